@@ -1,0 +1,439 @@
+//! Validation of a parsed model (collecting every error it can) and lowering to the
+//! hash-consed [`ExpressionGraph`].
+
+use std::collections::HashMap;
+
+use syn::Ident;
+
+use crate::graph::{ExpressionGraph, Function, NodeId};
+use crate::syntax::{BinaryOperator, Expression, Item, ModelDeclaration, Quadrature};
+
+/// Which derivative of a field a jet entry holds (mirror of the runtime's `Derivative`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Derivative {
+    /// The field value.
+    Value,
+    /// $`\partial/\partial X`$.
+    X,
+    /// $`\partial/\partial Y`$.
+    Y,
+}
+
+/// One model jet entry: a field index and a derivative.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct JetEntry {
+    /// Index into [`LoweredModel::fields`].
+    pub field: usize,
+    /// Which derivative.
+    pub derivative: Derivative,
+}
+
+/// A runtime parameter.
+#[derive(Clone, Debug)]
+pub struct Parameter {
+    /// Its name (a Rust identifier, the struct field name).
+    pub name: Ident,
+    /// Its documentation, empty when none was given.
+    pub documentation: String,
+}
+
+/// One energy term after lowering.
+#[derive(Clone, Debug)]
+pub struct LoweredTerm {
+    /// Term name.
+    pub name: String,
+    /// Quadrature rule.
+    pub quadrature: Quadrature,
+    /// The energy density in [`LoweredModel::graph`].
+    pub energy: NodeId,
+    /// The model jet entries the term depends on, ascending.
+    pub jet: Vec<usize>,
+}
+
+/// A validated model whose expressions live in one hash-consed graph.
+#[derive(Clone, Debug)]
+pub struct LoweredModel {
+    /// Rust type name.
+    pub name: Ident,
+    /// Registry name.
+    pub registry_name: String,
+    /// Doc comment lines.
+    pub documentation: Vec<String>,
+    /// Non-doc attributes forwarded to the struct.
+    pub attributes: Vec<syn::Attribute>,
+    /// Field names.
+    pub fields: Vec<String>,
+    /// Parameters.
+    pub parameters: Vec<Parameter>,
+    /// Model jet, sorted by field then derivative; `Node::Jet(k)` refers to `jet[k]`.
+    pub jet: Vec<JetEntry>,
+    /// All expressions.
+    pub graph: ExpressionGraph,
+    /// The terms in declaration order.
+    pub terms: Vec<LoweredTerm>,
+}
+
+impl LoweredModel {
+    /// The one-line description: the first non-empty doc line.
+    pub fn description(&self) -> String {
+        self.documentation
+            .iter()
+            .map(|line| line.trim())
+            .find(|line| !line.is_empty())
+            .unwrap_or("")
+            .to_string()
+    }
+}
+
+#[derive(Clone, Copy, Debug)]
+enum Binding {
+    Field(usize),
+    Parameter(usize),
+    Let(Option<NodeId>),
+    Term,
+}
+
+impl Binding {
+    fn kind(&self) -> &'static str {
+        match self {
+            Binding::Field(_) => "a field",
+            Binding::Parameter(_) => "a parameter",
+            Binding::Let(_) => "a `let` binding",
+            Binding::Term => "an energy term",
+        }
+    }
+}
+
+/// Raw jet code used during lowering: `3 * field + derivative`.
+fn jet_code(field: usize, derivative: Derivative) -> usize {
+    3 * field
+        + match derivative {
+            Derivative::Value => 0,
+            Derivative::X => 1,
+            Derivative::Y => 2,
+        }
+}
+
+fn jet_entry_of_code(code: usize) -> JetEntry {
+    JetEntry {
+        field: code / 3,
+        derivative: match code % 3 {
+            0 => Derivative::Value,
+            1 => Derivative::X,
+            _ => Derivative::Y,
+        },
+    }
+}
+
+struct Lowering<'a> {
+    graph: ExpressionGraph,
+    scope: HashMap<String, Binding>,
+    /// Names declared later in the model (for "used before its definition" hints).
+    declared_later: HashMap<String, &'static str>,
+    fields: &'a [Ident],
+    errors: Vec<syn::Error>,
+}
+
+impl Lowering<'_> {
+    fn lower(&mut self, expression: &Expression) -> Option<NodeId> {
+        match expression {
+            Expression::Number { value, .. } => Some(self.graph.constant(*value)),
+            Expression::Parenthesized { inner, .. } => self.lower(inner),
+            Expression::Name(name) => match self.scope.get(&name.to_string()).copied() {
+                Some(Binding::Field(field)) => {
+                    Some(self.graph.jet(jet_code(field, Derivative::Value)))
+                }
+                Some(Binding::Parameter(index)) => Some(self.graph.parameter(index)),
+                Some(Binding::Let(value)) => value,
+                Some(Binding::Term) => {
+                    self.errors.push(syn::Error::new(
+                        name.span(),
+                        format!(
+                            "`{name}` is an energy term, not a value: terms cannot be referenced (use a `let`)"
+                        ),
+                    ));
+                    None
+                }
+                None => {
+                    self.unknown(name);
+                    None
+                }
+            },
+            Expression::Derivative { base, axis } => {
+                match self.scope.get(&base.to_string()).copied() {
+                    Some(Binding::Field(field)) => match axis.to_string().as_str() {
+                        "x" => Some(self.graph.jet(jet_code(field, Derivative::X))),
+                        "y" => Some(self.graph.jet(jet_code(field, Derivative::Y))),
+                        other => {
+                            self.errors.push(syn::Error::new(
+                                axis.span(),
+                                format!(
+                                    "unsupported derivative `{base}.{other}`: only the first derivatives `{base}.x` and `{base}.y` are available"
+                                ),
+                            ));
+                            None
+                        }
+                    },
+                    Some(binding) => {
+                        self.errors.push(expression.span_range().error(format!(
+                            "unsupported derivative: `{base}` is {}, and only fields have derivatives `.x`/`.y`",
+                            binding.kind()
+                        )));
+                        None
+                    }
+                    None => {
+                        self.unknown(base);
+                        None
+                    }
+                }
+            }
+            Expression::Negate { operand, .. } => {
+                let operand = self.lower(operand)?;
+                Some(self.graph.negate(operand))
+            }
+            Expression::Binary { operator, lhs, rhs } => {
+                let a = self.lower(lhs);
+                let b = self.lower(rhs);
+                let (a, b) = (a?, b?);
+                Some(match operator {
+                    BinaryOperator::Add => self.graph.add(a, b),
+                    BinaryOperator::Subtract => self.graph.subtract(a, b),
+                    BinaryOperator::Multiply => self.graph.multiply(a, b),
+                    BinaryOperator::Divide => {
+                        if self.graph.constant_value(b) == Some(0.0) {
+                            self.errors
+                                .push(rhs.span_range().error("division by the constant zero"));
+                            return None;
+                        }
+                        self.graph.divide(a, b)
+                    }
+                })
+            }
+            Expression::Power { base, exponent, .. } => {
+                let lowered = self.lower(base)?;
+                if *exponent < 0 && self.graph.constant_value(lowered) == Some(0.0) {
+                    self.errors.push(
+                        expression
+                            .span_range()
+                            .error("negative power of the constant zero"),
+                    );
+                    return None;
+                }
+                Some(self.graph.power(lowered, *exponent))
+            }
+            Expression::Call {
+                function, argument, ..
+            } => {
+                let lowered = self.lower(argument);
+                let Some(known) = Function::from_name(&function.to_string()) else {
+                    self.errors.push(syn::Error::new(
+                        function.span(),
+                        format!(
+                            "unknown function `{function}`: expected one of `sqrt`, `sin`, `cos`, `exp`, `ln`"
+                        ),
+                    ));
+                    return None;
+                };
+                let lowered = lowered?;
+                if self.graph.depends_on_jet(lowered) {
+                    let field = self.graph.jet_dependencies(&[lowered])[0] / 3;
+                    self.errors.push(expression.span_range().error(format!(
+                        "`{function}` can only be applied to parameters and constants, but its argument depends on the field `{}` (functions are evaluated in f64, outside the differentiated kernels)",
+                        self.fields[field]
+                    )));
+                    return None;
+                }
+                Some(self.graph.apply(known, lowered))
+            }
+        }
+    }
+
+    fn unknown(&mut self, name: &Ident) {
+        let message = match self.declared_later.get(&name.to_string()) {
+            Some(kind) => format!(
+                "unknown identifier `{name}`: {kind} of that name is declared later; declare it before use"
+            ),
+            None => format!(
+                "unknown identifier `{name}`: not a field, parameter or earlier `let` of this model"
+            ),
+        };
+        self.errors.push(syn::Error::new(name.span(), message));
+    }
+}
+
+/// Validates a parsed model and lowers it, returning every error found (combined).
+pub fn lower_model(declaration: &ModelDeclaration) -> Result<LoweredModel, syn::Error> {
+    let mut errors: Vec<syn::Error> = declaration.deferred_errors.clone();
+    let mut scope: HashMap<String, Binding> = HashMap::new();
+
+    if declaration.fields.is_empty() {
+        errors.push(syn::Error::new(
+            declaration.fields_keyword,
+            "a model needs at least one field (`fields: w;`)",
+        ));
+    }
+    for (index, field) in declaration.fields.iter().enumerate() {
+        declare(&mut scope, field, Binding::Field(index), &mut errors);
+    }
+    for (index, parameter) in declaration.parameters.iter().enumerate() {
+        declare(&mut scope, &parameter.name, Binding::Parameter(index), &mut errors);
+    }
+
+    let mut declared_later = HashMap::new();
+    for item in &declaration.items {
+        match item {
+            Item::Let(binding) => {
+                declared_later.insert(binding.name.to_string(), "a `let`");
+            }
+            Item::Term(term) => {
+                declared_later.insert(term.name.to_string(), "an energy term");
+            }
+        }
+    }
+
+    let mut lowering = Lowering {
+        graph: ExpressionGraph::new(),
+        scope,
+        declared_later,
+        fields: &declaration.fields,
+        errors,
+    };
+    let mut raw_terms = Vec::new();
+    for item in &declaration.items {
+        match item {
+            Item::Let(binding) => {
+                let value = lowering.lower(&binding.value);
+                declare_in(&mut lowering, &binding.name, Binding::Let(value));
+            }
+            Item::Term(term) => {
+                let value = lowering.lower(&term.value);
+                let fresh = declare_in(&mut lowering, &term.name, Binding::Term);
+                if let Some(value) = value {
+                    if !lowering.graph.depends_on_jet(value) {
+                        lowering.errors.push(syn::Error::new(
+                            term.name.span(),
+                            format!(
+                                "energy term `{}` depends on no field: a constant energy has no residual or tangent",
+                                term.name
+                            ),
+                        ));
+                    } else if fresh {
+                        raw_terms.push((term, value));
+                    }
+                }
+            }
+        }
+    }
+    let mut errors = lowering.errors;
+    let has_terms = declaration
+        .items
+        .iter()
+        .any(|item| matches!(item, Item::Term(_)));
+    if !has_terms {
+        errors.push(syn::Error::new(
+            declaration.name.span(),
+            format!(
+                "model `{}` declares no `energy` term (add e.g. `energy stretching = ...;`)",
+                declaration.name
+            ),
+        ));
+    }
+
+    let graph = lowering.graph;
+    let roots: Vec<NodeId> = raw_terms.iter().map(|(_, value)| *value).collect();
+    let used_codes = graph.jet_dependencies(&roots);
+    if errors.is_empty() {
+        for (index, field) in declaration.fields.iter().enumerate() {
+            if !used_codes.iter().any(|code| code / 3 == index) {
+                errors.push(syn::Error::new(
+                    field.span(),
+                    format!("field `{field}` is used by no energy term"),
+                ));
+            }
+        }
+    }
+    if let Some(combined) = combine(errors) {
+        return Err(combined);
+    }
+
+    // Renumber jet entries densely: model jet index = rank of the raw code.
+    let jet: Vec<JetEntry> = used_codes.iter().map(|&c| jet_entry_of_code(c)).collect();
+    let rank = |code: usize| {
+        used_codes
+            .binary_search(&code)
+            .expect("every jet code reachable from a term is in the model jet")
+    };
+    let mut final_graph = ExpressionGraph::new();
+    let mut memo = HashMap::new();
+    let terms = raw_terms
+        .iter()
+        .map(|(term, value)| {
+            let energy = final_graph.import(&graph, *value, &mut memo, &rank);
+            LoweredTerm {
+                name: term.name.to_string(),
+                quadrature: term.quadrature,
+                energy,
+                jet: final_graph.jet_dependencies(&[energy]),
+            }
+        })
+        .collect();
+
+    Ok(LoweredModel {
+        name: declaration.name.clone(),
+        registry_name: declaration.registry_name.value(),
+        documentation: declaration.documentation.clone(),
+        attributes: declaration.attributes.clone(),
+        fields: declaration.fields.iter().map(ToString::to_string).collect(),
+        parameters: declaration
+            .parameters
+            .iter()
+            .map(|parameter| Parameter {
+                name: parameter.name.clone(),
+                documentation: parameter
+                    .documentation
+                    .as_ref()
+                    .map(|text| text.value())
+                    .unwrap_or_default(),
+            })
+            .collect(),
+        jet,
+        graph: final_graph,
+        terms,
+    })
+}
+
+fn declare_in(lowering: &mut Lowering<'_>, name: &Ident, binding: Binding) -> bool {
+    declare(&mut lowering.scope, name, binding, &mut lowering.errors)
+}
+
+fn declare(
+    scope: &mut HashMap<String, Binding>,
+    name: &Ident,
+    binding: Binding,
+    errors: &mut Vec<syn::Error>,
+) -> bool {
+    let key = name.to_string();
+    if let Some(previous) = scope.get(&key) {
+        errors.push(syn::Error::new(
+            name.span(),
+            format!(
+                "duplicate name `{name}`: already declared as {}; fields, parameters, lets and terms share one namespace",
+                previous.kind()
+            ),
+        ));
+        false
+    } else {
+        scope.insert(key, binding);
+        true
+    }
+}
+
+/// Combines errors into one `syn::Error` (reported as several diagnostics).
+pub fn combine(errors: Vec<syn::Error>) -> Option<syn::Error> {
+    let mut iterator = errors.into_iter();
+    let mut first = iterator.next()?;
+    for error in iterator {
+        first.combine(error);
+    }
+    Some(first)
+}

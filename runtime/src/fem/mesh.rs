@@ -1,0 +1,219 @@
+//! Meshes of Q8 elements and the structured rectangle generator.
+
+use super::element::QUAD8_NODES;
+use std::collections::BTreeMap;
+
+/// A mesh of Q8 elements with named edge sets.
+#[derive(Clone, Debug)]
+pub struct Mesh {
+    /// Node coordinates $`(X, Y)`$.
+    pub nodes: Vec<[f64; 2]>,
+    /// Element connectivity in VTK Q8 order (corners counter-clockwise, then mid-sides).
+    pub elements: Vec<[usize; QUAD8_NODES]>,
+    /// Named boundary edges, each a list of 3-node segments `[end, end, middle]`.
+    pub edges: BTreeMap<String, Vec<[usize; 3]>>,
+}
+
+/// Errors building a mesh.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum MeshError {
+    /// A size or count that must be positive is not.
+    #[error("mesh: {what} must be positive, got {value}")]
+    NotPositive {
+        /// Which quantity.
+        what: &'static str,
+        /// The value given.
+        value: f64,
+    },
+    /// Grading below 1.
+    #[error("mesh: grading must be >= 1 (largest/smallest element size), got {0}")]
+    Grading(f64),
+}
+
+/// Positions of `n + 1` element boundaries on $`[0, L]`$, symmetric geometric grading with the
+/// smallest elements at both ends; `grading` is the ratio largest/smallest size (1 = uniform).
+pub fn graded_breakpoints(length: f64, n: usize, grading: f64) -> Vec<f64> {
+    let half = (n.saturating_sub(1)) / 2;
+    let ratio = if half == 0 || grading <= 1.0 {
+        1.0
+    } else {
+        grading.powf(1.0 / half as f64)
+    };
+    let sizes: Vec<f64> = (0..n)
+        .map(|k| ratio.powi(k.min(n - 1 - k) as i32))
+        .collect();
+    let total: f64 = sizes.iter().sum();
+    let mut x = Vec::with_capacity(n + 1);
+    let mut acc = 0.0;
+    x.push(0.0);
+    for s in &sizes {
+        acc += s / total * length;
+        x.push(acc);
+    }
+    x[n] = length;
+    x
+}
+
+impl Mesh {
+    /// Structured mesh of `[0, lx] × [0, ly]` with `nx × ny` Q8 elements, graded toward all edges by
+    /// `grading` (1 = uniform). Edges are named `left` (X = 0), `right` (X = lx), `bottom` (Y = 0),
+    /// `top` (Y = ly); segments run in increasing coordinate. Mid-side nodes sit at edge midpoints,
+    /// so every element is an affine rectangle.
+    pub fn rectangle(
+        lx: f64,
+        ly: f64,
+        nx: usize,
+        ny: usize,
+        grading: f64,
+    ) -> Result<Mesh, MeshError> {
+        for (what, value) in [("lx", lx), ("ly", ly), ("nx", nx as f64), ("ny", ny as f64)] {
+            if !(value > 0.0) || !value.is_finite() {
+                return Err(MeshError::NotPositive { what, value });
+            }
+        }
+        if !(grading >= 1.0) || !grading.is_finite() {
+            return Err(MeshError::Grading(grading));
+        }
+        let xs = graded_breakpoints(lx, nx, grading);
+        let ys = graded_breakpoints(ly, ny, grading);
+        // Grid of (2nx+1) × (2ny+1) positions, without element centres.
+        let gx = 2 * nx + 1;
+        let gy = 2 * ny + 1;
+        let coordinate = |breaks: &[f64], k: usize| {
+            if k % 2 == 0 {
+                breaks[k / 2]
+            } else {
+                0.5 * (breaks[k / 2] + breaks[k / 2 + 1])
+            }
+        };
+        let mut id = vec![usize::MAX; gx * gy];
+        let mut nodes = Vec::new();
+        for j in 0..gy {
+            for i in 0..gx {
+                if i % 2 == 1 && j % 2 == 1 {
+                    continue;
+                }
+                id[j * gx + i] = nodes.len();
+                nodes.push([coordinate(&xs, i), coordinate(&ys, j)]);
+            }
+        }
+        let at = |i: usize, j: usize| id[j * gx + i];
+        let mut elements = Vec::with_capacity(nx * ny);
+        for ey in 0..ny {
+            for ex in 0..nx {
+                let (i, j) = (2 * ex, 2 * ey);
+                elements.push([
+                    at(i, j),
+                    at(i + 2, j),
+                    at(i + 2, j + 2),
+                    at(i, j + 2),
+                    at(i + 1, j),
+                    at(i + 2, j + 1),
+                    at(i + 1, j + 2),
+                    at(i, j + 1),
+                ]);
+            }
+        }
+        let mut edges = BTreeMap::new();
+        edges.insert(
+            "bottom".to_string(),
+            (0..nx).map(|e| [at(2 * e, 0), at(2 * e + 2, 0), at(2 * e + 1, 0)]).collect(),
+        );
+        edges.insert(
+            "top".to_string(),
+            (0..nx)
+                .map(|e| [at(2 * e, gy - 1), at(2 * e + 2, gy - 1), at(2 * e + 1, gy - 1)])
+                .collect(),
+        );
+        edges.insert(
+            "left".to_string(),
+            (0..ny).map(|e| [at(0, 2 * e), at(0, 2 * e + 2), at(0, 2 * e + 1)]).collect(),
+        );
+        edges.insert(
+            "right".to_string(),
+            (0..ny)
+                .map(|e| [at(gx - 1, 2 * e), at(gx - 1, 2 * e + 2), at(gx - 1, 2 * e + 1)])
+                .collect(),
+        );
+        Ok(Mesh {
+            nodes,
+            elements,
+            edges,
+        })
+    }
+
+    /// Node coordinates of element `e` in element order.
+    pub fn element_coordinates(&self, e: usize) -> [[f64; 2]; QUAD8_NODES] {
+        let mut c = [[0.0; 2]; QUAD8_NODES];
+        for (k, &n) in self.elements[e].iter().enumerate() {
+            c[k] = self.nodes[n];
+        }
+        c
+    }
+
+    /// Sorted, de-duplicated nodes of a named edge (`None` if there is no such edge).
+    pub fn edge_nodes(&self, name: &str) -> Option<Vec<usize>> {
+        let segments = self.edges.get(name)?;
+        let mut nodes: Vec<usize> = segments.iter().flat_map(|s| s.iter().copied()).collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        Some(nodes)
+    }
+
+    /// Names of the edge sets.
+    pub fn edge_names(&self) -> Vec<&str> {
+        self.edges.keys().map(String::as_str).collect()
+    }
+
+    /// The node nearest to a point.
+    pub fn nearest_node(&self, point: [f64; 2]) -> usize {
+        let mut best = (f64::INFINITY, 0);
+        for (i, p) in self.nodes.iter().enumerate() {
+            let d = (p[0] - point[0]).powi(2) + (p[1] - point[1]).powi(2);
+            if d < best.0 {
+                best = (d, i);
+            }
+        }
+        best.1
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rectangle_counts_and_edges() {
+        let m = Mesh::rectangle(4.0, 2.0, 4, 2, 1.0).unwrap();
+        // (2nx+1)(2ny+1) − nx ny
+        assert_eq!(m.nodes.len(), 9 * 5 - 8);
+        assert_eq!(m.elements.len(), 8);
+        assert_eq!(m.edge_nodes("left").unwrap().len(), 5);
+        assert_eq!(m.edge_nodes("top").unwrap().len(), 9);
+        for &n in &m.edge_nodes("right").unwrap() {
+            assert_eq!(m.nodes[n][0], 4.0);
+        }
+        for &n in &m.edge_nodes("top").unwrap() {
+            assert_eq!(m.nodes[n][1], 2.0);
+        }
+    }
+
+    #[test]
+    fn graded_breakpoints_respect_ratio_and_length() {
+        let x = graded_breakpoints(10.0, 9, 4.0);
+        assert_eq!(x.len(), 10);
+        assert!((x[9] - 10.0).abs() < 1e-14);
+        let sizes: Vec<f64> = x.windows(2).map(|w| w[1] - w[0]).collect();
+        let max = sizes.iter().cloned().fold(0.0, f64::max);
+        let min = sizes.iter().cloned().fold(f64::INFINITY, f64::min);
+        assert!((max / min - 4.0).abs() < 1e-12);
+        assert!((sizes[0] - sizes[8]).abs() < 1e-14);
+    }
+
+    #[test]
+    fn invalid_sizes_are_errors() {
+        assert!(Mesh::rectangle(-1.0, 1.0, 2, 2, 1.0).is_err());
+        assert!(Mesh::rectangle(1.0, 1.0, 0, 2, 1.0).is_err());
+        assert!(Mesh::rectangle(1.0, 1.0, 2, 2, 0.5).is_err());
+    }
+}

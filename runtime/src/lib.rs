@@ -1,0 +1,13 @@
+//! Runtime of the wrinkle toolkit: the kernel contract models are generated against, the Q8
+//! finite element, meshes, dof maps, assembly, sparse linear algebra and solvers.
+
+pub mod model;
+pub mod scalar;
+
+pub use model::{Derivative, EnergyModel, JetEntry, ModelSpec, QuadratureRule, TermSpec};
+pub use scalar::Scalar;
+pub mod linear;
+pub mod solve;
+pub mod fem;
+pub mod problem;
+pub mod series;

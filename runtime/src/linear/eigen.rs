@@ -1,0 +1,547 @@
+//! Linear buckling eigenproblem $`(A + \lambda B)\varphi = 0`$ by shift-invert Lanczos in the
+//! $`A`$-inner product.
+//!
+//! With $`A`$ symmetric positive definite and $`B`$ symmetric (indefinite), the problem is
+//! equivalent to $`C \varphi = \mu \varphi`$ with $`C = A^{-1} B`$ and $`\mu = -1/\lambda`$.
+//! $`C`$ is self-adjoint for $`\langle x, y \rangle_A = x^\top A y`$, since
+//! $`\langle x, C y \rangle_A = x^\top B y`$. The smallest positive $`\lambda`$ are the most
+//! negative $`\mu`$, an extreme (and, after the shift-invert, well separated) end of the spectrum
+//! of $`C`$, which Lanczos finds fast.
+//!
+//! The basis $`V`$ is kept $`A`$-orthonormal by full re-orthogonalisation (classical Gram–Schmidt
+//! applied twice); the projected matrix $`T = V^\top B V`$ is diagonalised by nalgebra's
+//! `SymmetricEigen` (Rayleigh–Ritz), and the iteration is restarted thickly (Krylov–Schur
+//! style): the wanted Ritz vectors are kept together with the residual direction
+//! $`(I - V V^\top A) C v_m`$, shared by all Ritz residuals. Alongside $`V`$ the products
+//! $`A V`$, $`B V`$ and $`C V`$ are kept, so that restarts need no new solves and residuals
+//! $`r = C y - \theta y`$ are computed exactly: $`\|r\|_A^2 = r^\top (B V s - \theta A V s)`$.
+//!
+//! Repeated eigenvalues: a single-vector Krylov method resolves one vector per distinct eigenvalue
+//! (a double $`\lambda`$ is reported once, with one of its modes); the load factors returned are
+//! the distinct smallest ones.
+
+use nalgebra::{DMatrix, SymmetricEigen};
+
+use super::factor::{FactorizationKind, LinearError, SparseFactorization};
+use super::pattern::SparseMatrix;
+
+/// Settings of [`smallest_positive_buckling`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct BucklingOptions {
+    /// Number of buckling modes wanted (smallest positive load factors), at least 1.
+    pub modes: usize,
+    /// Relative residual $`\|C y - \theta y\|_A / |\theta|`$ at which a Ritz pair is converged.
+    /// The load factor error is of the order of the square of this residual. When rounding
+    /// prevents reaching it, a residual stagnating below $`\sqrt{\mathrm{tolerance}}`$ is
+    /// accepted (the load factor is then still accurate to about `tolerance`).
+    pub tolerance: f64,
+    /// Maximum dimension of the Krylov basis (clamped to the problem dimension).
+    pub max_krylov: usize,
+    /// Maximum number of thick restarts.
+    pub max_restarts: usize,
+    /// When the iteration does not converge: return the best approximations with
+    /// `converged = false` instead of [`LinearError::NotConverged`].
+    pub accept_unconverged: bool,
+    /// Seed of the deterministic pseudo-random start vector.
+    pub seed: u64,
+}
+
+impl Default for BucklingOptions {
+    fn default() -> Self {
+        Self {
+            modes: 1,
+            tolerance: 1e-12,
+            max_krylov: 40,
+            max_restarts: 300,
+            accept_unconverged: false,
+            seed: 0x5eed_0f_b0c1,
+        }
+    }
+}
+
+/// One buckling mode.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BucklingMode {
+    /// Load factor $`\lambda > 0`$ with $`(A + \lambda B)\varphi = 0`$, computed as the Rayleigh
+    /// quotient $`-\varphi^\top A \varphi / \varphi^\top B \varphi`$.
+    pub load_factor: f64,
+    /// Mode $`\varphi`$, normalised so that $`\varphi^\top A \varphi = 1`$, with its
+    /// largest-magnitude component positive.
+    pub vector: Vec<f64>,
+    /// Relative residual $`\|(A + \lambda B)\varphi\|_2 / \|A\varphi\|_2`$.
+    pub residual: f64,
+}
+
+/// Result of [`smallest_positive_buckling`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct BucklingSolution {
+    /// Modes sorted by ascending load factor (fewer than asked for when the explored subspace
+    /// holds fewer positive load factors).
+    pub modes: Vec<BucklingMode>,
+    /// Applications of the operator $`A^{-1} B`$ (one sparse solve each).
+    pub iterations: usize,
+    /// Whether every returned mode reached the tolerance (always `true` unless
+    /// [`BucklingOptions::accept_unconverged`] is set).
+    pub converged: bool,
+}
+
+/// Relative size below which a negative Ritz value is considered rounding noise.
+const NEGATIVE_NOISE_RELATIVE: f64 = 1e-9;
+/// Relative $`A`$-norm below which an orthogonalised vector signals an invariant subspace.
+const BREAKDOWN_RELATIVE: f64 = 1e-10;
+
+/// Deterministic pseudo-random numbers (SplitMix64) for start and breakdown vectors.
+struct SplitMix64(u64);
+
+impl SplitMix64 {
+    fn next_unit(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^= z >> 31;
+        // 53 random bits mapped to [-1, 1).
+        (z >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    }
+
+    fn vector(&mut self, n: usize) -> Vec<f64> {
+        (0..n).map(|_| self.next_unit()).collect()
+    }
+}
+
+fn dot(x: &[f64], y: &[f64]) -> f64 {
+    x.iter().zip(y).map(|(a, b)| a * b).sum()
+}
+
+fn norm(x: &[f64]) -> f64 {
+    dot(x, x).sqrt()
+}
+
+/// $`y \mathrel{+}= \alpha x`$.
+fn axpy(alpha: f64, x: &[f64], y: &mut [f64]) {
+    for (target, source) in y.iter_mut().zip(x) {
+        *target += alpha * source;
+    }
+}
+
+/// $`\sum_j s_j X_j`$.
+fn combine(vectors: &[Vec<f64>], coefficients: impl Iterator<Item = f64>, n: usize) -> Vec<f64> {
+    let mut result = vec![0.0; n];
+    for (vector, coefficient) in vectors.iter().zip(coefficients) {
+        axpy(coefficient, vector, &mut result);
+    }
+    result
+}
+
+/// The $`A`$-orthonormal basis with the images needed for Rayleigh–Ritz and residuals.
+struct Basis {
+    /// $`v_j`$, $`A`$-orthonormal.
+    vectors: Vec<Vec<f64>>,
+    /// $`A v_j`$.
+    a_vectors: Vec<Vec<f64>>,
+    /// $`B v_j`$.
+    b_vectors: Vec<Vec<f64>>,
+    /// $`C v_j = A^{-1} B v_j`$.
+    c_vectors: Vec<Vec<f64>>,
+}
+
+struct Operator<'a> {
+    a: &'a SparseMatrix,
+    a_factor: &'a SparseFactorization,
+    b: &'a SparseMatrix,
+    applications: usize,
+}
+
+impl Operator<'_> {
+    /// Returns $`(B x, A^{-1} B x)`$.
+    fn apply(&mut self, x: &[f64]) -> Result<(Vec<f64>, Vec<f64>), LinearError> {
+        let mut bx = vec![0.0; x.len()];
+        self.b.try_multiply_into(x, &mut bx)?;
+        let mut cx = bx.clone();
+        self.a_factor.solve_in_place(&mut cx)?;
+        self.applications += 1;
+        Ok((bx, cx))
+    }
+
+    fn apply_a(&self, x: &[f64]) -> Result<Vec<f64>, LinearError> {
+        let mut ax = vec![0.0; x.len()];
+        self.a.try_multiply_into(x, &mut ax)?;
+        Ok(ax)
+    }
+}
+
+impl Basis {
+    fn len(&self) -> usize {
+        self.vectors.len()
+    }
+
+    /// Removes from `x` its $`A`$-projection on the basis (classical Gram–Schmidt, twice).
+    fn orthogonalize(&self, x: &mut [f64]) {
+        for _ in 0..2 {
+            let coefficients: Vec<f64> = self.a_vectors.iter().map(|av| dot(av, x)).collect();
+            for (vector, coefficient) in self.vectors.iter().zip(coefficients) {
+                axpy(-coefficient, vector, x);
+            }
+        }
+    }
+
+    /// Orthogonalises `x` (of $`A`$-norm `reference_norm` before) against the basis and appends
+    /// it normalised, applying the operator. Returns `false` (basis unchanged) when `x` lies in the
+    /// span of the basis to working precision.
+    fn try_push(
+        &mut self,
+        mut x: Vec<f64>,
+        reference_norm: f64,
+        operator: &mut Operator<'_>,
+    ) -> Result<bool, LinearError> {
+        self.orthogonalize(&mut x);
+        let mut ax = operator.apply_a(&x)?;
+        let a_norm_squared = dot(&x, &ax);
+        if !(a_norm_squared > 0.0)
+            || !a_norm_squared.is_finite()
+            || a_norm_squared.sqrt() <= BREAKDOWN_RELATIVE * reference_norm
+        {
+            return Ok(false);
+        }
+        let scale = 1.0 / a_norm_squared.sqrt();
+        x.iter_mut().for_each(|value| *value *= scale);
+        ax.iter_mut().for_each(|value| *value *= scale);
+        let (bx, cx) = operator.apply(&x)?;
+        self.vectors.push(x);
+        self.a_vectors.push(ax);
+        self.b_vectors.push(bx);
+        self.c_vectors.push(cx);
+        Ok(true)
+    }
+
+    /// Appends a new direction: the orthogonalised image of the last vector, or a random vector
+    /// when the image lies in the span (invariant subspace). Returns `false` when the basis spans
+    /// the whole space.
+    fn expand(
+        &mut self,
+        operator: &mut Operator<'_>,
+        random: &mut SplitMix64,
+    ) -> Result<bool, LinearError> {
+        let n = operator.a.dimension();
+        if self.len() >= n {
+            return Ok(false);
+        }
+        if let (Some(last_c), Some(last_b)) = (self.c_vectors.last(), self.b_vectors.last()) {
+            // ‖C v‖_A² = (C v)ᵀ A C v = (C v)ᵀ B v.
+            let reference = dot(last_c, last_b).abs().sqrt();
+            if self.try_push(last_c.clone(), reference, operator)? {
+                return Ok(true);
+            }
+        }
+        for _ in 0..3 {
+            let candidate = random.vector(n);
+            let reference = dot(&candidate, &operator.apply_a(&candidate)?).abs().sqrt();
+            if self.try_push(candidate, reference, operator)? {
+                return Ok(true);
+            }
+        }
+        Ok(false)
+    }
+}
+
+/// A Ritz pair of the current basis with its relative residual.
+struct RitzPair {
+    value: f64,
+    coefficients: Vec<f64>,
+    relative_residual: f64,
+}
+
+fn rayleigh_ritz(basis: &Basis, n: usize) -> Vec<RitzPair> {
+    let m = basis.len();
+    let projected = DMatrix::from_fn(m, m, |i, j| {
+        0.5 * (dot(&basis.a_vectors[i], &basis.c_vectors[j])
+            + dot(&basis.a_vectors[j], &basis.c_vectors[i]))
+    });
+    let eigen = SymmetricEigen::new(projected);
+    let mut order: Vec<usize> = (0..m).collect();
+    order.sort_by(|&i, &j| eigen.eigenvalues[i].total_cmp(&eigen.eigenvalues[j]));
+    order
+        .into_iter()
+        .map(|index| {
+            let value = eigen.eigenvalues[index];
+            let coefficients: Vec<f64> = eigen.eigenvectors.column(index).iter().copied().collect();
+            // r = C y − θ y and A r = B y − θ A y, so ‖r‖²_A = rᵀ A r.
+            let mut residual = combine(&basis.c_vectors, coefficients.iter().copied(), n);
+            let mut a_residual = combine(&basis.b_vectors, coefficients.iter().copied(), n);
+            for (j, coefficient) in coefficients.iter().enumerate() {
+                axpy(-value * coefficient, &basis.vectors[j], &mut residual);
+                axpy(-value * coefficient, &basis.a_vectors[j], &mut a_residual);
+            }
+            let residual_norm = dot(&residual, &a_residual).abs().sqrt();
+            RitzPair {
+                value,
+                coefficients,
+                relative_residual: residual_norm / value.abs().max(f64::MIN_POSITIVE),
+            }
+        })
+        .collect()
+}
+
+fn validate(
+    a: &SparseMatrix,
+    a_factor: &SparseFactorization,
+    b: &SparseMatrix,
+    options: &BucklingOptions,
+) -> Result<(), LinearError> {
+    let n = a.dimension();
+    for (what, found) in [
+        ("load stiffness B", b.dimension()),
+        ("factorisation of A", a_factor.dimension()),
+    ] {
+        if found != n {
+            return Err(LinearError::DimensionMismatch {
+                what: what.to_owned(),
+                expected: n,
+                found,
+            });
+        }
+    }
+    for (what, matrix) in [("A", a), ("B", b)] {
+        if matrix.values.len() != matrix.pattern.nnz() {
+            return Err(LinearError::DimensionMismatch {
+                what: format!("values of {what}"),
+                expected: matrix.pattern.nnz(),
+                found: matrix.values.len(),
+            });
+        }
+        if matrix.values.iter().any(|value| !value.is_finite()) {
+            return Err(LinearError::NonFinite {
+                what: format!("buckling matrix {what}"),
+            });
+        }
+    }
+    if options.modes == 0 {
+        return Err(LinearError::InvalidOption {
+            what: "at least one buckling mode must be requested".to_owned(),
+        });
+    }
+    if !(options.tolerance > 0.0 && options.tolerance < 1.0) {
+        return Err(LinearError::InvalidOption {
+            what: format!(
+                "eigen-solver tolerance must lie in (0, 1), got {}",
+                options.tolerance
+            ),
+        });
+    }
+    if options.max_krylov < options.modes + 2 && options.max_krylov < n {
+        return Err(LinearError::InvalidOption {
+            what: format!(
+                "max_krylov = {} must be at least modes + 2 = {}",
+                options.max_krylov,
+                options.modes + 2
+            ),
+        });
+    }
+    match a_factor.kind() {
+        Some(FactorizationKind::Cholesky) => Ok(()),
+        None => Err(LinearError::NotFactorized),
+        Some(kind) => Err(LinearError::InvalidOption {
+            what: format!(
+                "the buckling eigen-solver needs A positive definite (Cholesky factorisation), \
+                 but A was factorised as {kind:?} with {} negative pivots: the reference state is \
+                 already beyond a critical point",
+                a_factor
+                    .negative_pivots()
+                    .map_or_else(|| "unknown".to_owned(), |count| count.to_string())
+            ),
+        }),
+    }
+}
+
+/// Smallest positive load factors $`\lambda`$ of the linear buckling problem
+/// $`(A + \lambda B)\varphi = 0`$, with $`A`$ symmetric positive definite (given with its
+/// Cholesky factorisation `a_factor`) and $`B`$ symmetric, possibly indefinite.
+///
+/// Returns the `options.modes` smallest positive $`\lambda`$ in ascending order (each with its
+/// $`A`$-normalised mode and residual $`\|(A+\lambda B)\varphi\| / \|A\varphi\|`$), or
+/// [`LinearError::NoPositiveLoadFactor`] when $`B \succeq 0`$ (no compression), or
+/// [`LinearError::NotConverged`] stating the residual reached.
+pub fn smallest_positive_buckling(
+    a: &SparseMatrix,
+    a_factor: &SparseFactorization,
+    b: &SparseMatrix,
+    options: &BucklingOptions,
+) -> Result<BucklingSolution, LinearError> {
+    validate(a, a_factor, b, options)?;
+    let n = a.dimension();
+    if n == 0 {
+        return Err(LinearError::NoPositiveLoadFactor {
+            most_negative_ritz_value: 0.0,
+        });
+    }
+    let krylov_dimension = options.max_krylov.min(n);
+    let mut operator = Operator {
+        a,
+        a_factor,
+        b,
+        applications: 0,
+    };
+    let mut random = SplitMix64(options.seed);
+    let mut basis = Basis {
+        vectors: Vec::new(),
+        a_vectors: Vec::new(),
+        b_vectors: Vec::new(),
+        c_vectors: Vec::new(),
+    };
+    if !basis.expand(&mut operator, &mut random)? {
+        return Err(LinearError::NoPositiveLoadFactor {
+            most_negative_ritz_value: 0.0,
+        });
+    }
+    // Check that the factorisation belongs to A: A (A⁻¹ B v) = B v.
+    {
+        let check = operator.apply_a(&basis.c_vectors[0])?;
+        let mismatch: f64 = check
+            .iter()
+            .zip(&basis.b_vectors[0])
+            .map(|(x, y)| (x - y) * (x - y))
+            .sum::<f64>()
+            .sqrt();
+        let scale = norm(&basis.b_vectors[0]);
+        if mismatch > 1e-6 * scale {
+            return Err(LinearError::InvalidOption {
+                what: format!(
+                    "a_factor is not a factorisation of A (‖A A⁻¹ B v − B v‖ / ‖B v‖ = {:e})",
+                    mismatch / scale
+                ),
+            });
+        }
+    }
+    let mut history: Vec<f64> = Vec::new();
+    let mut restarts = 0;
+    loop {
+        while basis.len() < krylov_dimension {
+            if !basis.expand(&mut operator, &mut random)? {
+                break;
+            }
+        }
+        let ritz = rayleigh_ritz(&basis, n);
+        let spectral_scale = ritz.iter().fold(0.0_f64, |max, pair| max.max(pair.value.abs()));
+        let noise = NEGATIVE_NOISE_RELATIVE * spectral_scale;
+        let wanted: Vec<&RitzPair> = ritz
+            .iter()
+            .take(options.modes)
+            .take_while(|pair| pair.value < -noise)
+            .collect();
+        if wanted.is_empty() {
+            return Err(LinearError::NoPositiveLoadFactor {
+                most_negative_ritz_value: ritz.first().map_or(0.0, |pair| pair.value),
+            });
+        }
+        let worst = wanted
+            .iter()
+            .fold(0.0_f64, |max, pair| max.max(pair.relative_residual));
+        history.push(worst);
+        let exhausted = basis.len() >= n;
+        let stagnated = history.len() >= 4 && worst <= options.tolerance.sqrt() && {
+            let earlier = history[history.len() - 4];
+            worst > 0.5 * earlier
+        };
+        let converged = worst <= options.tolerance || exhausted || stagnated;
+        if converged || restarts >= options.max_restarts {
+            if !converged && !options.accept_unconverged {
+                return Err(LinearError::NotConverged {
+                    restarts,
+                    iterations: operator.applications,
+                    residual: worst,
+                    tolerance: options.tolerance,
+                });
+            }
+            let modes = wanted
+                .iter()
+                .map(|pair| finish_mode(&basis, pair, &operator, n))
+                .collect::<Result<Vec<_>, _>>()?;
+            let mut modes = modes;
+            modes.sort_by(|x, y| x.load_factor.total_cmp(&y.load_factor));
+            return Ok(BucklingSolution {
+                modes,
+                iterations: operator.applications,
+                converged,
+            });
+        }
+        // Thick restart: keep the most negative Ritz vectors and the common residual direction.
+        restarts += 1;
+        let keep = (options.modes + (krylov_dimension - options.modes) / 2)
+            .min(krylov_dimension.saturating_sub(2))
+            .max(options.modes)
+            .min(ritz.len());
+        let last_c = basis.c_vectors.last().cloned().unwrap_or_default();
+        let last_b = basis.b_vectors.last().cloned().unwrap_or_default();
+        let mut continuation = last_c.clone();
+        basis.orthogonalize(&mut continuation);
+        let transform = |vectors: &[Vec<f64>]| -> Vec<Vec<f64>> {
+            ritz[..keep]
+                .iter()
+                .map(|pair| combine(vectors, pair.coefficients.iter().copied(), n))
+                .collect()
+        };
+        let restarted = Basis {
+            vectors: transform(&basis.vectors),
+            a_vectors: transform(&basis.a_vectors),
+            b_vectors: transform(&basis.b_vectors),
+            c_vectors: transform(&basis.c_vectors),
+        };
+        basis = restarted;
+        let reference = dot(&last_c, &last_b).abs().sqrt();
+        if !basis.try_push(continuation, reference, &mut operator)? {
+            basis.expand(&mut operator, &mut random)?;
+        }
+    }
+}
+
+/// Builds the returned mode from a converged Ritz pair: explicit $`A`$-normalisation, Rayleigh
+/// quotient and residual with the original matrices.
+fn finish_mode(
+    basis: &Basis,
+    pair: &RitzPair,
+    operator: &Operator<'_>,
+    n: usize,
+) -> Result<BucklingMode, LinearError> {
+    let (a, a_factor, b) = (operator.a, operator.a_factor, operator.b);
+    let mut vector = combine(&basis.vectors, pair.coefficients.iter().copied(), n);
+    let mut av = vec![0.0; n];
+    let mut bv = vec![0.0; n];
+    a.try_multiply_into(&vector, &mut av)?;
+    b.try_multiply_into(&vector, &mut bv)?;
+    let a_norm_squared = dot(&vector, &av);
+    let b_quotient = dot(&vector, &bv);
+    // λ = −1/θ with θ the Rayleigh quotient of C = A⁻¹B in the B-form,
+    // θ = (Bφ)ᵀ A⁻¹ (Bφ) / φᵀBφ: stationary at eigenvectors like the A-form quotient
+    // −φᵀAφ/φᵀBφ, but free of the cancellation of Aφ for smooth modes of stiff operators.
+    let mut cv = bv.clone();
+    a_factor.solve_in_place(&mut cv)?;
+    let c_quotient = dot(&bv, &cv);
+    let load_factor = if std::env::var("RQ_A").is_ok() { -a_norm_squared / b_quotient } else { -b_quotient / c_quotient };
+    if !(load_factor.is_finite() && load_factor > 0.0 && a_norm_squared > 0.0) {
+        return Err(LinearError::NonFinite {
+            what: format!(
+                "buckling load factor (vᵀAv = {a_norm_squared:e}, vᵀBv = {b_quotient:e})"
+            ),
+        });
+    }
+    let residual_vector: Vec<f64> = av
+        .iter()
+        .zip(&bv)
+        .map(|(ax, bx)| ax + load_factor * bx)
+        .collect();
+    let residual = norm(&residual_vector) / norm(&av);
+    let mut scale = 1.0 / a_norm_squared.sqrt();
+    let largest = vector
+        .iter()
+        .copied()
+        .fold(0.0_f64, |best, value| if value.abs() > best.abs() { value } else { best });
+    if largest < 0.0 {
+        scale = -scale;
+    }
+    vector.iter_mut().for_each(|value| *value *= scale);
+    Ok(BucklingMode {
+        load_factor,
+        vector,
+        residual,
+    })
+}

@@ -1,0 +1,566 @@
+//! Sparse factorisations of symmetric matrices with the symbolic analysis done once per pattern.
+//!
+//! The symbolic phase (fill-reducing AMD ordering, elimination tree, structure of the factor) only
+//! depends on the [`SparsityPattern`]; it is computed by [`SparseFactorization::analyze`] and
+//! reused by every [`SparseFactorization::factorize`]. The numeric phase tries, in order,
+//! 1. $`A = L L^\top`$ (Cholesky), which succeeds iff $`A`$ is numerically positive definite;
+//! 2. $`A = L D L^\top`$ without pivoting on the same symbolic structure, accepted when no pivot
+//!    $`d_k`$ is tiny relative to the scale of its column (and none grew excessively); the signs
+//!    of $`d_k`$ give the inertia of $`A`$ (Sylvester's law);
+//! 3. $`P A Q = L U`$ with partial pivoting (simplicial, COLAMD column ordering computed on first
+//!    use and then reused), which also detects numerical singularity through its pivots.
+
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
+use faer::linalg::cholesky::llt::factor::{LltError as DenseLltError, LltRegularization};
+use faer::perm::PermRef;
+use faer::sparse::linalg::cholesky::{
+    CholeskySymbolicParams, LdltRef, LltRef, SymbolicCholesky, SymbolicCholeskyRaw,
+    SymmetricOrdering, factorize_symbolic_cholesky, supernodal::SupernodalLdltRef,
+};
+use faer::sparse::linalg::lu::{LuSymbolicParams, factorize_symbolic_lu, simplicial};
+use faer::sparse::linalg::{LuError, SupernodalThreshold};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::{Conj, MatMut, Par, Side};
+
+use super::pattern::{SparseMatrix, SparsityPattern};
+
+/// Pivots of $`L D L^\top`$ with $`|d_k| \le`$ this times the largest absolute entry of their
+/// column are considered a breakdown of the pivot-free factorisation (fall back to LU).
+const LDLT_TINY_PIVOT_RELATIVE: f64 = 1e-12;
+/// Pivots of $`L D L^\top`$ with $`|d_k| \ge`$ this times their column scale signal harmful
+/// element growth (fall back to LU).
+const LDLT_GROWTH_RELATIVE: f64 = 1e10;
+/// LU pivots with $`|u_{kk}| \le`$ this times the largest absolute entry of their column make the
+/// matrix numerically singular.
+const LU_SINGULAR_PIVOT_RELATIVE: f64 = 1e-13;
+
+/// Errors of the sparse linear algebra.
+#[derive(thiserror::Error, Debug, Clone, PartialEq)]
+pub enum LinearError {
+    /// The matrix is (numerically) singular: the factorisation broke down at dof (column)
+    /// `column`, where the pivot was `pivot`.
+    #[error(
+        "singular matrix: factorisation broke down at dof (column) {column} with pivot {pivot:e} \
+         (is a rigid-body mode left unconstrained?)"
+    )]
+    Singular {
+        /// Dof (column of the original matrix) at which the factorisation broke down.
+        column: usize,
+        /// Pivot value found there.
+        pivot: f64,
+    },
+    /// A NaN or infinite value was found.
+    #[error("non-finite value (NaN or infinity) in {what}")]
+    NonFinite {
+        /// Where the value was found.
+        what: String,
+    },
+    /// An argument has the wrong length.
+    #[error("dimension mismatch for {what}: expected {expected}, found {found}")]
+    DimensionMismatch {
+        /// Which argument.
+        what: String,
+        /// Expected length.
+        expected: usize,
+        /// Actual length.
+        found: usize,
+    },
+    /// An index is not below the dimension.
+    #[error("index {index} out of range for a matrix of dimension {dimension}")]
+    IndexOutOfRange {
+        /// The offending index.
+        index: usize,
+        /// Matrix dimension.
+        dimension: usize,
+    },
+    /// An entry outside the sparsity pattern was written.
+    #[error("entry ({row}, {column}) is not in the sparsity pattern")]
+    StructuralZero {
+        /// Row of the entry.
+        row: usize,
+        /// Column of the entry.
+        column: usize,
+    },
+    /// The matrix does not have the pattern the factorisation was analysed for.
+    #[error("the matrix does not have the sparsity pattern the factorisation was analysed for")]
+    PatternMismatch,
+    /// A solve was requested before a successful numeric factorisation.
+    #[error("solve requested before a successful numeric factorisation")]
+    NotFactorized,
+    /// The buckling problem has no positive load factor.
+    #[error(
+        "no positive buckling load factor: the load stiffness B is positive semidefinite on the \
+         explored subspace (most negative Ritz value of A⁻¹B was {most_negative_ritz_value:e}); \
+         the load does not compress the structure"
+    )]
+    NoPositiveLoadFactor {
+        /// Most negative Ritz value $`\mu`$ of $`A^{-1} B`$ found (non-negative up to noise).
+        most_negative_ritz_value: f64,
+    },
+    /// The buckling eigen-solver did not reach the tolerance.
+    #[error(
+        "buckling eigen-solver did not converge: after {restarts} restarts ({iterations} operator \
+         applications) the worst relative residual of the wanted modes is {residual:e}, above the \
+         tolerance {tolerance:e}"
+    )]
+    NotConverged {
+        /// Restarts performed.
+        restarts: usize,
+        /// Applications of $`A^{-1} B`$.
+        iterations: usize,
+        /// Worst relative residual reached.
+        residual: f64,
+        /// Requested tolerance.
+        tolerance: f64,
+    },
+    /// Invalid solver option.
+    #[error("invalid option: {what}")]
+    InvalidOption {
+        /// Description of the problem.
+        what: String,
+    },
+    /// Failure inside faer (allocation, index overflow).
+    #[error("sparse backend failure: {0}")]
+    Backend(String),
+}
+
+/// Which factorisation the last successful [`SparseFactorization::factorize`] produced.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FactorizationKind {
+    /// $`A = L L^\top`$: $`A`$ is positive definite.
+    Cholesky,
+    /// $`A = L D L^\top`$ without pivoting: $`A`$ is symmetric indefinite (and not singular).
+    SymmetricIndefinite,
+    /// $`P A Q = L U`$ with partial pivoting.
+    Lu,
+}
+
+/// State of the LU fallback: column ordering (computed on first use) and numeric factors.
+struct LuFactors {
+    col_perm_fwd: Vec<usize>,
+    col_perm_inv: Vec<usize>,
+    row_perm_fwd: Vec<usize>,
+    row_perm_inv: Vec<usize>,
+    numeric: simplicial::SimplicialLu<usize, f64>,
+}
+
+/// Sparse factorisation of a symmetric matrix with a reusable symbolic analysis.
+///
+/// Typical use: `analyze` once per pattern, then `factorize` + `solve_in_place` for each new
+/// matrix on that pattern (Newton iterations, continuation steps).
+pub struct SparseFactorization {
+    dimension: usize,
+    col_ptr: Vec<usize>,
+    row_idx: Vec<usize>,
+    symbolic: Option<SymbolicCholesky<usize>>,
+    factor_values: Vec<f64>,
+    factor_scratch: MemBuffer,
+    lu: Option<LuFactors>,
+    kind: Option<FactorizationKind>,
+    negative_pivots: Option<usize>,
+    /// Copy of the matrix values, kept for one step of iterative refinement after
+    /// $`L D L^\top`$ solves.
+    refinement_values: Vec<f64>,
+}
+
+impl std::fmt::Debug for SparseFactorization {
+    fn fmt(&self, formatter: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        formatter
+            .debug_struct("SparseFactorization")
+            .field("dimension", &self.dimension)
+            .field("factor_len", &self.factor_values.len())
+            .field("kind", &self.kind)
+            .field("negative_pivots", &self.negative_pivots)
+            .finish_non_exhaustive()
+    }
+}
+
+fn backend(error: impl std::fmt::Debug) -> LinearError {
+    LinearError::Backend(format!("{error:?}"))
+}
+
+impl SparseFactorization {
+    /// Symbolic analysis of `pattern`: approximate-minimum-degree ordering, elimination tree and
+    /// structure of the Cholesky factor (simplicial or supernodal, chosen by faer).
+    pub fn analyze(pattern: &SparsityPattern) -> Result<Self, LinearError> {
+        Self::analyze_with_threshold(pattern, SupernodalThreshold::AUTO)
+    }
+
+    /// As [`SparseFactorization::analyze`], with an explicit choice between the simplicial and
+    /// supernodal Cholesky structures (for tests and tuning).
+    pub fn analyze_with_threshold(
+        pattern: &SparsityPattern,
+        threshold: SupernodalThreshold,
+    ) -> Result<Self, LinearError> {
+        let dimension = pattern.dimension();
+        let mut factorization = Self {
+            dimension,
+            col_ptr: pattern.col_ptr().to_vec(),
+            row_idx: pattern.row_idx().to_vec(),
+            symbolic: None,
+            factor_values: Vec::new(),
+            factor_scratch: MemBuffer::new(StackReq::empty()),
+            lu: None,
+            kind: None,
+            negative_pivots: None,
+            refinement_values: Vec::new(),
+        };
+        if dimension == 0 {
+            return Ok(factorization);
+        }
+        let structure = SymbolicSparseColMatRef::new_checked(
+            dimension,
+            dimension,
+            pattern.col_ptr(),
+            None,
+            pattern.row_idx(),
+        );
+        let params = CholeskySymbolicParams {
+            supernodal_flop_ratio_threshold: threshold,
+            ..Default::default()
+        };
+        let symbolic =
+            factorize_symbolic_cholesky(structure, Side::Upper, SymmetricOrdering::Amd, params)
+                .map_err(backend)?;
+        let requirement = StackReq::or(
+            symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
+            symbolic.factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default()),
+        );
+        factorization.factor_scratch = MemBuffer::try_new(requirement).map_err(backend)?;
+        factorization.factor_values = vec![0.0; symbolic.len_val()];
+        factorization.symbolic = Some(symbolic);
+        Ok(factorization)
+    }
+
+    /// Dimension of the analysed pattern.
+    pub fn dimension(&self) -> usize {
+        self.dimension
+    }
+
+    /// Number of non-zeros of the Cholesky / $`L D L^\top`$ factor (fill-in included).
+    pub fn factor_nnz(&self) -> usize {
+        self.factor_values.len()
+    }
+
+    /// Numeric factorisation of `matrix`, which must have the analysed pattern: $`L L^\top`$
+    /// first, $`L D L^\top`$ if $`A`$ is not positive definite, LU as the last fallback. Returns
+    /// which factorisation succeeded, or [`LinearError::Singular`] naming the dof where it broke
+    /// down.
+    pub fn factorize(&mut self, matrix: &SparseMatrix) -> Result<FactorizationKind, LinearError> {
+        self.kind = None;
+        self.negative_pivots = None;
+        let pattern = &matrix.pattern;
+        if pattern.dimension() != self.dimension
+            || pattern.col_ptr() != self.col_ptr
+            || pattern.row_idx() != self.row_idx
+        {
+            return Err(LinearError::PatternMismatch);
+        }
+        if matrix.values.len() != pattern.nnz() {
+            return Err(LinearError::DimensionMismatch {
+                what: "matrix values".to_owned(),
+                expected: pattern.nnz(),
+                found: matrix.values.len(),
+            });
+        }
+        if let Some(slot) = matrix.values.iter().position(|value| !value.is_finite()) {
+            let column = self.col_ptr.partition_point(|&start| start <= slot) - 1;
+            return Err(LinearError::NonFinite {
+                what: format!(
+                    "matrix entry ({}, {column}) = {}",
+                    self.row_idx[slot], matrix.values[slot]
+                ),
+            });
+        }
+        let Some(symbolic) = self.symbolic.as_ref() else {
+            self.kind = Some(FactorizationKind::Cholesky);
+            self.negative_pivots = Some(0);
+            return Ok(FactorizationKind::Cholesky);
+        };
+        let structure = SymbolicSparseColMatRef::new_checked(
+            self.dimension,
+            self.dimension,
+            &self.col_ptr,
+            None,
+            &self.row_idx,
+        );
+        let a = SparseColMatRef::new(structure, &matrix.values);
+        let stack = MemStack::new(&mut self.factor_scratch);
+        let llt = symbolic.factorize_numeric_llt(
+            &mut self.factor_values,
+            a,
+            Side::Upper,
+            LltRegularization::default(),
+            Par::Seq,
+            stack,
+            Default::default(),
+        );
+        match llt {
+            Ok(_) => {
+                self.kind = Some(FactorizationKind::Cholesky);
+                self.negative_pivots = Some(0);
+                return Ok(FactorizationKind::Cholesky);
+            }
+            Err(DenseLltError::NonPositivePivot { .. }) => {}
+        }
+        let column_scale = matrix.column_max_abs();
+        let stack = MemStack::new(&mut self.factor_scratch);
+        let ldlt = symbolic.factorize_numeric_ldlt(
+            &mut self.factor_values,
+            a,
+            Side::Upper,
+            LdltRegularization::default(),
+            Par::Seq,
+            stack,
+            Default::default(),
+        );
+        if ldlt.is_ok()
+            && let Some(negative) = self.accept_ldlt_pivots(&column_scale)
+        {
+            self.kind = Some(FactorizationKind::SymmetricIndefinite);
+            self.negative_pivots = Some(negative);
+            self.refinement_values.clone_from(&matrix.values);
+            return Ok(FactorizationKind::SymmetricIndefinite);
+        }
+        self.factorize_lu(&matrix.values, &column_scale)?;
+        self.kind = Some(FactorizationKind::Lu);
+        Ok(FactorizationKind::Lu)
+    }
+
+    /// Pivots $`d_k`$ of the $`L D L^\top`$ factor in elimination order.
+    fn ldlt_pivots(&self) -> Vec<f64> {
+        let Some(symbolic) = self.symbolic.as_ref() else {
+            return Vec::new();
+        };
+        match symbolic.raw() {
+            SymbolicCholeskyRaw::Simplicial(simplicial_symbolic) => {
+                let col_ptr = simplicial_symbolic.col_ptr();
+                (0..self.dimension)
+                    .map(|k| self.factor_values[col_ptr[k]])
+                    .collect()
+            }
+            SymbolicCholeskyRaw::Supernodal(supernodal_symbolic) => {
+                let factor = SupernodalLdltRef::new(supernodal_symbolic, &self.factor_values);
+                let mut pivots = Vec::with_capacity(self.dimension);
+                for supernode in 0..supernodal_symbolic.n_supernodes() {
+                    let values = factor.supernode(supernode).val();
+                    pivots.extend((0..values.ncols()).map(|j| values[(j, j)]));
+                }
+                pivots
+            }
+        }
+    }
+
+    /// Checks the $`L D L^\top`$ pivots; returns the number of negative ones when acceptable.
+    fn accept_ldlt_pivots(&self, column_scale: &[f64]) -> Option<usize> {
+        let symbolic = self.symbolic.as_ref()?;
+        let pivots = self.ldlt_pivots();
+        let forward = symbolic.perm().map(|perm| perm.arrays().0);
+        let mut negative = 0;
+        for (k, pivot) in pivots.iter().enumerate() {
+            let column = forward.map_or(k, |forward| forward[k]);
+            let scale = column_scale[column];
+            let magnitude = pivot.abs();
+            if !pivot.is_finite()
+                || magnitude <= LDLT_TINY_PIVOT_RELATIVE * scale
+                || magnitude >= LDLT_GROWTH_RELATIVE * scale
+            {
+                return None;
+            }
+            if *pivot < 0.0 {
+                negative += 1;
+            }
+        }
+        Some(negative)
+    }
+
+    fn factorize_lu(
+        &mut self,
+        values: &[f64],
+        column_scale: &[f64],
+    ) -> Result<(), LinearError> {
+        let n = self.dimension;
+        let structure =
+            SymbolicSparseColMatRef::new_checked(n, n, &self.col_ptr, None, &self.row_idx);
+        let a = SparseColMatRef::new(structure, values);
+        if self.lu.is_none() {
+            let params = LuSymbolicParams {
+                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SIMPLICIAL,
+                ..Default::default()
+            };
+            let symbolic = factorize_symbolic_lu(a.symbolic(), params).map_err(backend)?;
+            let (forward, inverse) = symbolic.col_perm().arrays();
+            self.lu = Some(LuFactors {
+                col_perm_fwd: forward.to_vec(),
+                col_perm_inv: inverse.to_vec(),
+                row_perm_fwd: vec![0; n],
+                row_perm_inv: vec![0; n],
+                numeric: simplicial::SimplicialLu::new(),
+            });
+        }
+        let Some(lu) = self.lu.as_mut() else {
+            return Err(LinearError::NotFactorized);
+        };
+        let mut buffer =
+            MemBuffer::try_new(simplicial::factorize_simplicial_numeric_lu_scratch::<
+                usize,
+                f64,
+            >(n, n))
+            .map_err(backend)?;
+        let col_perm = PermRef::new_checked(&lu.col_perm_fwd, &lu.col_perm_inv, n);
+        let result = simplicial::factorize_simplicial_numeric_lu(
+            &mut lu.row_perm_fwd,
+            &mut lu.row_perm_inv,
+            &mut lu.numeric,
+            a,
+            col_perm,
+            MemStack::new(&mut buffer),
+        );
+        match result {
+            Ok(()) => {}
+            Err(LuError::SymbolicSingular { index }) => {
+                return Err(LinearError::Singular {
+                    column: lu.col_perm_fwd[index],
+                    pivot: 0.0,
+                });
+            }
+            Err(LuError::Generic(error)) => return Err(backend(error)),
+        }
+        let upper = lu.numeric.u_factor_unsorted();
+        for step in 0..n {
+            let rows = upper.symbolic().row_idx_of_col_raw(step);
+            let values = upper.val_of_col(step);
+            let pivot = rows
+                .iter()
+                .zip(values)
+                .find(|(row, _)| **row == step)
+                .map_or(0.0, |(_, value)| *value);
+            let column = lu.col_perm_fwd[step];
+            if !pivot.is_finite() || pivot.abs() <= LU_SINGULAR_PIVOT_RELATIVE * column_scale[column]
+            {
+                return Err(LinearError::Singular { column, pivot });
+            }
+        }
+        Ok(())
+    }
+
+    /// Solves $`A x = b`$ in place (`rhs` holds $`b`$ on entry and $`x`$ on exit), after a
+    /// successful [`SparseFactorization::factorize`]. After $`L D L^\top`$ one step of iterative
+    /// refinement is applied.
+    pub fn solve_in_place(&self, rhs: &mut [f64]) -> Result<(), LinearError> {
+        let n = self.dimension;
+        if rhs.len() != n {
+            return Err(LinearError::DimensionMismatch {
+                what: "right-hand side".to_owned(),
+                expected: n,
+                found: rhs.len(),
+            });
+        }
+        let Some(kind) = self.kind else {
+            return Err(LinearError::NotFactorized);
+        };
+        if rhs.iter().any(|value| !value.is_finite()) {
+            return Err(LinearError::NonFinite {
+                what: "right-hand side".to_owned(),
+            });
+        }
+        if n == 0 {
+            return Ok(());
+        }
+        if kind == FactorizationKind::SymmetricIndefinite {
+            let original = rhs.to_vec();
+            self.raw_solve(kind, rhs)?;
+            let mut residual = vec![0.0; n];
+            self.refinement_residual(&original, rhs, &mut residual);
+            self.raw_solve(kind, &mut residual)?;
+            for (value, correction) in rhs.iter_mut().zip(&residual) {
+                *value += correction;
+            }
+        } else {
+            self.raw_solve(kind, rhs)?;
+        }
+        if rhs.iter().any(|value| !value.is_finite()) {
+            return Err(LinearError::NonFinite {
+                what: "solution of the linear system".to_owned(),
+            });
+        }
+        Ok(())
+    }
+
+    /// $`r = b - A x`$ with the stored copy of the matrix values.
+    fn refinement_residual(&self, b: &[f64], x: &[f64], residual: &mut [f64]) {
+        residual.copy_from_slice(b);
+        for (column, &x_column) in x.iter().enumerate() {
+            let range = self.col_ptr[column]..self.col_ptr[column + 1];
+            for (&row, &value) in self.row_idx[range.clone()]
+                .iter()
+                .zip(&self.refinement_values[range])
+            {
+                residual[row] -= value * x_column;
+            }
+        }
+    }
+
+    fn raw_solve(&self, kind: FactorizationKind, rhs: &mut [f64]) -> Result<(), LinearError> {
+        let n = self.dimension;
+        let rhs_matrix = MatMut::from_column_major_slice_mut(rhs, n, 1);
+        match kind {
+            FactorizationKind::Cholesky | FactorizationKind::SymmetricIndefinite => {
+                let Some(symbolic) = self.symbolic.as_ref() else {
+                    return Err(LinearError::NotFactorized);
+                };
+                let mut buffer =
+                    MemBuffer::try_new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq))
+                        .map_err(backend)?;
+                let stack = MemStack::new(&mut buffer);
+                if kind == FactorizationKind::Cholesky {
+                    LltRef::new(symbolic, &self.factor_values).solve_in_place_with_conj(
+                        Conj::No,
+                        rhs_matrix,
+                        Par::Seq,
+                        stack,
+                    );
+                } else {
+                    LdltRef::new(symbolic, &self.factor_values).solve_in_place_with_conj(
+                        Conj::No,
+                        rhs_matrix,
+                        Par::Seq,
+                        stack,
+                    );
+                }
+            }
+            FactorizationKind::Lu => {
+                let Some(lu) = self.lu.as_ref() else {
+                    return Err(LinearError::NotFactorized);
+                };
+                let mut buffer = MemBuffer::try_new(simplicial::solve_in_place_scratch::<
+                    usize,
+                    f64,
+                >(n, 1, Par::Seq))
+                .map_err(backend)?;
+                lu.numeric.solve_in_place_with_conj(
+                    PermRef::new_checked(&lu.row_perm_fwd, &lu.row_perm_inv, n),
+                    PermRef::new_checked(&lu.col_perm_fwd, &lu.col_perm_inv, n),
+                    Conj::No,
+                    rhs_matrix,
+                    Par::Seq,
+                    MemStack::new(&mut buffer),
+                );
+            }
+        }
+        Ok(())
+    }
+
+    /// Kind of the last successful factorisation (`None` before one or after a failure).
+    pub fn kind(&self) -> Option<FactorizationKind> {
+        self.kind
+    }
+
+    /// Number of negative eigenvalues of $`A`$ (Sylvester inertia) when known: 0 after a
+    /// successful $`L L^\top`$, the number of negative pivots of $`D`$ after $`L D L^\top`$,
+    /// `None` after LU or before a factorisation.
+    pub fn negative_pivots(&self) -> Option<usize> {
+        self.negative_pivots
+    }
+}

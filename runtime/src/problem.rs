@@ -1,0 +1,162 @@
+//! A discrete problem: model + mesh + constraints + loads, and its residual
+//! $`R(U,\lambda) = \partial\Pi/\partial U - F_0 - \lambda F_1`$ over the free dofs.
+
+use crate::fem::{
+    Assembler, BodyLoad, DirichletCondition, DofMap, EdgeTraction, LoadVectors, Mesh,
+};
+use crate::linear::pattern::SparseMatrix;
+use crate::model::EnergyModel;
+use crate::scalar::Scalar;
+use num_dual::Dual64;
+use std::sync::Arc;
+
+/// Errors setting a problem up.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ProblemError {
+    /// Bad constraints.
+    #[error(transparent)]
+    Dofs(#[from] crate::fem::dofs::DofError),
+    /// Degenerate element.
+    #[error(transparent)]
+    Jacobian(#[from] crate::fem::element::JacobianError),
+    /// Load on a missing edge.
+    #[error(transparent)]
+    Load(#[from] crate::fem::loads::UnknownEdgeError),
+    /// The model has more fields than the assembler's element buffers hold.
+    #[error("model `{model}` has {count} fields; at most {max} are supported")]
+    TooManyFields {
+        /// Model name.
+        model: &'static str,
+        /// Its field count.
+        count: usize,
+        /// The limit.
+        max: usize,
+    },
+}
+
+/// Model, discretisation, constraints and loads.
+#[derive(Debug)]
+pub struct Problem<M: EnergyModel> {
+    /// Element loop over the model's kernels.
+    pub assembler: Assembler<M>,
+    /// $`F_0`$, $`F_1`$.
+    pub loads: LoadVectors,
+}
+
+impl<M: EnergyModel> Problem<M> {
+    /// Builds dofs, assembler and load vectors.
+    pub fn new(
+        model: M,
+        mesh: Arc<Mesh>,
+        conditions: &[DirichletCondition],
+        tractions: &[EdgeTraction],
+        body_loads: &[BodyLoad],
+    ) -> Result<Self, ProblemError> {
+        let field_count = M::SPEC.fields.len();
+        if field_count > crate::fem::assembly::MAX_FIELDS {
+            return Err(ProblemError::TooManyFields {
+                model: M::SPEC.name,
+                count: field_count,
+                max: crate::fem::assembly::MAX_FIELDS,
+            });
+        }
+        let dofs = Arc::new(DofMap::new(&mesh, field_count, conditions)?);
+        let loads = LoadVectors::assemble(&mesh, &dofs, tractions, body_loads)?;
+        let assembler = Assembler::new(model, mesh, dofs)?;
+        Ok(Problem { assembler, loads })
+    }
+
+    /// The dof map.
+    pub fn dofs(&self) -> &DofMap {
+        self.assembler.dofs()
+    }
+
+    /// Number of free dofs.
+    pub fn free_count(&self) -> usize {
+        self.assembler.dofs().free_count
+    }
+
+    /// A zero matrix on the tangent's pattern.
+    pub fn new_matrix(&self) -> SparseMatrix {
+        SparseMatrix::zeros(self.assembler.pattern().clone())
+    }
+
+    /// $`R(U, \lambda)`$, generic over the scalar (series, dual numbers).
+    pub fn residual<S: Scalar>(&self, free: &[S], load: S) -> Vec<S> {
+        let global = self.assembler.dofs().expand(free, load);
+        let mut r = self.assembler.internal_forces(&global);
+        for (i, ri) in r.iter_mut().enumerate() {
+            *ri = *ri - (load * self.loads.proportional[i] + self.loads.fixed[i]);
+        }
+        r
+    }
+
+    /// Total potential energy $`\Pi(U) - U\cdot(F_0 + \lambda F_1)`$ (the work of prescribed
+    /// displacements is not included).
+    pub fn potential_energy(&self, free: &[f64], load: f64) -> f64 {
+        let global = self.assembler.dofs().expand(free, load);
+        let internal = self.assembler.energy(&global);
+        let external: f64 = free
+            .iter()
+            .enumerate()
+            .map(|(i, u)| u * (self.loads.fixed[i] + load * self.loads.proportional[i]))
+            .sum();
+        internal - external
+    }
+
+    /// Tangent $`K_t = \partial R/\partial U`$ into `matrix`.
+    pub fn tangent_into(&self, free: &[f64], load: f64, matrix: &mut SparseMatrix) {
+        let global = self.assembler.dofs().expand(free, load);
+        self.assembler.assemble_tangent_into(&global, matrix);
+    }
+
+    /// $`\partial R/\partial\lambda`$ at fixed free dofs (includes prescribed displacements
+    /// proportional to the load), by one dual-number residual evaluation.
+    pub fn load_derivative(&self, free: &[f64], load: f64) -> Vec<f64> {
+        let free_dual: Vec<Dual64> = free.iter().map(|&u| Dual64::from_re(u)).collect();
+        let r = self.residual(&free_dual, Dual64::new(load, 1.0));
+        r.iter().map(|v| v.eps).collect()
+    }
+
+    /// Directional derivative of the tangent,
+    /// $`\frac{d}{d\epsilon} K_t(U + \epsilon\,\delta U, \lambda + \epsilon\,\delta\lambda)\big|_0`$,
+    /// from the generated tangent kernels on dual numbers (the geometric stiffness of linear
+    /// buckling).
+    pub fn tangent_derivative_into(
+        &self,
+        free: &[f64],
+        load: f64,
+        direction: &[f64],
+        load_direction: f64,
+        matrix: &mut SparseMatrix,
+    ) {
+        let free_dual: Vec<Dual64> = free
+            .iter()
+            .zip(direction)
+            .map(|(&u, &d)| Dual64::new(u, d))
+            .collect();
+        let global = self
+            .assembler
+            .dofs()
+            .expand(&free_dual, Dual64::new(load, load_direction));
+        let values = self.assembler.tangent_values(&global);
+        for (m, v) in matrix.values.iter_mut().zip(values) {
+            *m = v.eps;
+        }
+    }
+
+    /// Scale for relative residuals at load `load`: $`\max(\|R(0,\lambda)\|, \|F_0\| + |\lambda|\|F_1\|)`$,
+    /// or 1 when both vanish.
+    pub fn residual_scale(&self, load: f64) -> f64 {
+        let zero = vec![0.0; self.free_count()];
+        let r0 = norm(&self.residual(&zero, load));
+        let f = norm(&self.loads.fixed) + load.abs() * norm(&self.loads.proportional);
+        let s = r0.max(f);
+        if s > 0.0 { s } else { 1.0 }
+    }
+}
+
+/// Euclidean norm.
+pub fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}

@@ -1,0 +1,9 @@
+//! Nonlinear and scalar solvers.
+
+pub mod brent;
+pub mod buckling;
+pub mod error;
+pub mod newton;
+
+pub use error::SolveError;
+pub mod ellipticity;

@@ -1,0 +1,363 @@
+//! Sparse factorisations against dense nalgebra references.
+
+use std::sync::Arc;
+
+use nalgebra::{DVector, SymmetricEigen};
+use rand::rngs::StdRng;
+use rand::{Rng, SeedableRng};
+use wrinkle_runtime::linear::{
+    FactorizationKind, LinearError, SparseFactorization, SparseMatrix, SparsityPattern,
+};
+
+/// Random symmetric pattern: each column couples to `per_column` random other columns.
+fn random_pattern(n: usize, per_column: usize, rng: &mut StdRng) -> Arc<SparsityPattern> {
+    let mut entries = Vec::new();
+    for column in 0..n {
+        for _ in 0..per_column {
+            entries.push((rng.random_range(0..n), column));
+        }
+    }
+    Arc::new(SparsityPattern::from_symmetric_entries(n, entries).unwrap())
+}
+
+/// Symmetric matrix on `pattern` with random off-diagonal entries in [-1, 1] and diagonal
+/// $`\pm(\sum_j |a_{ij}| + \mathrm{margin})`$, the sign chosen by `negative(i)`.
+fn dominant_matrix(
+    pattern: &Arc<SparsityPattern>,
+    rng: &mut StdRng,
+    margin: f64,
+    negative: impl Fn(usize) -> bool,
+) -> SparseMatrix {
+    let n = pattern.dimension();
+    let mut matrix = SparseMatrix::zeros(pattern.clone());
+    for column in 0..n {
+        for &row in pattern.rows_of_column(column) {
+            if row < column {
+                let value = rng.random_range(-1.0..1.0);
+                matrix.add_to(row, column, value).unwrap();
+                matrix.add_to(column, row, value).unwrap();
+            }
+        }
+    }
+    let dense = matrix.to_dense();
+    for i in 0..n {
+        let off_diagonal: f64 = dense.row(i).iter().map(|value| value.abs()).sum();
+        let sign = if negative(i) { -1.0 } else { 1.0 };
+        matrix.add_to(i, i, sign * (off_diagonal + margin)).unwrap();
+    }
+    matrix
+}
+
+fn random_vector(n: usize, rng: &mut StdRng) -> Vec<f64> {
+    (0..n).map(|_| rng.random_range(-1.0..1.0)).collect()
+}
+
+/// Solves with the sparse factorisation and compares with nalgebra's dense LU.
+fn assert_solution_matches_dense(
+    factorization: &SparseFactorization,
+    matrix: &SparseMatrix,
+    rhs: &[f64],
+) {
+    let dense = matrix.to_dense();
+    let reference = dense
+        .clone()
+        .lu()
+        .solve(&DVector::from_column_slice(rhs))
+        .expect("dense reference is regular");
+    let mut solution = rhs.to_vec();
+    factorization.solve_in_place(&mut solution).unwrap();
+    let error = (DVector::from_column_slice(&solution) - &reference).norm() / reference.norm();
+    assert!(error < 1e-10, "relative error {error:e}");
+}
+
+fn dense_negative_eigenvalues(matrix: &SparseMatrix) -> usize {
+    SymmetricEigen::new(matrix.to_dense())
+        .eigenvalues
+        .iter()
+        .filter(|value| **value < 0.0)
+        .count()
+}
+
+#[test]
+fn cholesky_solves_random_spd_matrices_like_dense_lu() {
+    let mut rng = StdRng::seed_from_u64(11);
+    for n in [1, 7, 60, 150] {
+        let pattern = random_pattern(n, 3, &mut rng);
+        let matrix = dominant_matrix(&pattern, &mut rng, 0.5, |_| false);
+        let mut factorization = SparseFactorization::analyze(&pattern).unwrap();
+        assert_eq!(factorization.kind(), None);
+        assert_eq!(factorization.factorize(&matrix).unwrap(), FactorizationKind::Cholesky);
+        assert_eq!(factorization.kind(), Some(FactorizationKind::Cholesky));
+        assert_eq!(factorization.negative_pivots(), Some(0));
+        assert!(factorization.factor_nnz() >= n);
+        let rhs = random_vector(n, &mut rng);
+        assert_solution_matches_dense(&factorization, &matrix, &rhs);
+    }
+}
+
+#[test]
+fn indefinite_matrices_use_ldlt_with_correct_inertia() {
+    let mut rng = StdRng::seed_from_u64(12);
+    for (n, threshold) in [
+        (50, faer::sparse::linalg::SupernodalThreshold::FORCE_SIMPLICIAL),
+        (120, faer::sparse::linalg::SupernodalThreshold::FORCE_SIMPLICIAL),
+        (120, faer::sparse::linalg::SupernodalThreshold::FORCE_SUPERNODAL),
+        (300, faer::sparse::linalg::SupernodalThreshold::FORCE_SUPERNODAL),
+    ] {
+        let pattern = random_pattern(n, 4, &mut rng);
+        // Strong diagonal dominance with mixed signs: pivots stay far from zero without pivoting.
+        let matrix = dominant_matrix(&pattern, &mut rng, 1.0, |i| i % 3 == 1);
+        let mut factorization =
+            SparseFactorization::analyze_with_threshold(&pattern, threshold).unwrap();
+        assert_eq!(
+            factorization.factorize(&matrix).unwrap(),
+            FactorizationKind::SymmetricIndefinite
+        );
+        let expected = dense_negative_eigenvalues(&matrix);
+        assert!(expected > 0);
+        assert_eq!(factorization.negative_pivots(), Some(expected));
+        let rhs = random_vector(n, &mut rng);
+        assert_solution_matches_dense(&factorization, &matrix, &rhs);
+    }
+}
+
+#[test]
+fn weakly_dominant_indefinite_matrix_is_solved_accurately() {
+    // Margins near zero make some pivots small; either LDLᵀ (with refinement) or the LU fallback
+    // must deliver dense-LU accuracy, and the inertia, when reported, must be right.
+    let mut rng = StdRng::seed_from_u64(13);
+    let pattern = random_pattern(80, 4, &mut rng);
+    let mut matrix = dominant_matrix(&pattern, &mut rng, 0.0, |i| i % 2 == 0);
+    for value in matrix.values.iter_mut() {
+        *value *= 1.0 + 0.3 * rng.random_range(-1.0..1.0);
+    }
+    // Re-symmetrise after the perturbation.
+    let dense = matrix.to_dense();
+    for column in 0..80 {
+        for &row in pattern.rows_of_column(column) {
+            let slot = pattern.slot(row, column).unwrap();
+            matrix.values[slot] = 0.5 * (dense[(row, column)] + dense[(column, row)]);
+        }
+    }
+    let mut factorization = SparseFactorization::analyze(&pattern).unwrap();
+    let kind = factorization.factorize(&matrix).unwrap();
+    assert_ne!(kind, FactorizationKind::Cholesky);
+    if let Some(negative) = factorization.negative_pivots() {
+        assert_eq!(negative, dense_negative_eigenvalues(&matrix));
+    }
+    let rhs = random_vector(80, &mut rng);
+    assert_solution_matches_dense(&factorization, &matrix, &rhs);
+}
+
+#[test]
+fn zero_diagonal_saddle_blocks_fall_back_to_lu() {
+    // Blocks [[0, a], [a, 0]] coupled weakly: every diagonal entry is zero, so LLᵀ and LDLᵀ
+    // without pivoting break down at the first pivot whatever the ordering.
+    let blocks = 20;
+    let n = 2 * blocks;
+    let mut rng = StdRng::seed_from_u64(14);
+    let mut entries = Vec::new();
+    for block in 0..blocks {
+        entries.push((2 * block + 1, 2 * block));
+        if block + 1 < blocks {
+            entries.push((2 * block + 2, 2 * block + 1));
+        }
+    }
+    let pattern = Arc::new(SparsityPattern::from_symmetric_entries(n, entries).unwrap());
+    let mut matrix = SparseMatrix::zeros(pattern.clone());
+    for block in 0..blocks {
+        let a = 1.0 + rng.random_range(0.0..1.0);
+        matrix.add_to(2 * block + 1, 2 * block, a).unwrap();
+        matrix.add_to(2 * block, 2 * block + 1, a).unwrap();
+        if block + 1 < blocks {
+            let coupling = 0.1 * rng.random_range(-1.0..1.0);
+            matrix.add_to(2 * block + 2, 2 * block + 1, coupling).unwrap();
+            matrix.add_to(2 * block + 1, 2 * block + 2, coupling).unwrap();
+        }
+    }
+    let mut factorization = SparseFactorization::analyze(&pattern).unwrap();
+    assert_eq!(factorization.factorize(&matrix).unwrap(), FactorizationKind::Lu);
+    assert_eq!(factorization.negative_pivots(), None);
+    let rhs = random_vector(n, &mut rng);
+    assert_solution_matches_dense(&factorization, &matrix, &rhs);
+}
+
+#[test]
+fn refactorisation_reuses_the_symbolic_analysis() {
+    let mut rng = StdRng::seed_from_u64(15);
+    let pattern = random_pattern(90, 3, &mut rng);
+    let mut factorization = SparseFactorization::analyze(&pattern).unwrap();
+    let factor_nnz = factorization.factor_nnz();
+    let kinds = [
+        (0, FactorizationKind::Cholesky),
+        (4, FactorizationKind::SymmetricIndefinite),
+        (0, FactorizationKind::Cholesky),
+        (2, FactorizationKind::SymmetricIndefinite),
+    ];
+    for (period, expected_kind) in kinds {
+        let matrix = dominant_matrix(&pattern, &mut rng, 0.7, |i| period > 0 && i % period == 0);
+        assert_eq!(factorization.factorize(&matrix).unwrap(), expected_kind);
+        assert_eq!(factorization.factor_nnz(), factor_nnz);
+        let rhs = random_vector(90, &mut rng);
+        assert_solution_matches_dense(&factorization, &matrix, &rhs);
+        if period > 0 {
+            assert_eq!(
+                factorization.negative_pivots(),
+                Some(dense_negative_eigenvalues(&matrix))
+            );
+        }
+    }
+    // A matrix on another pattern is rejected.
+    let other = random_pattern(90, 3, &mut rng);
+    let foreign = dominant_matrix(&other, &mut rng, 1.0, |_| false);
+    assert_eq!(
+        factorization.factorize(&foreign),
+        Err(LinearError::PatternMismatch)
+    );
+    assert_eq!(factorization.kind(), None);
+    let mut rhs = vec![1.0; 90];
+    assert_eq!(
+        factorization.solve_in_place(&mut rhs),
+        Err(LinearError::NotFactorized)
+    );
+}
+
+/// Tridiagonal pattern of dimension n.
+fn chain_pattern(n: usize) -> Arc<SparsityPattern> {
+    Arc::new(SparsityPattern::from_symmetric_entries(n, (1..n).map(|i| (i, i - 1))).unwrap())
+}
+
+#[test]
+fn zero_column_is_reported_as_singular_at_that_dof() {
+    let n = 25;
+    let pattern = chain_pattern(n);
+    let mut matrix = SparseMatrix::zeros(pattern.clone());
+    for i in 0..n {
+        matrix.add_to(i, i, 2.0).unwrap();
+        if i > 0 {
+            matrix.add_to(i, i - 1, -1.0).unwrap();
+            matrix.add_to(i - 1, i, -1.0).unwrap();
+        }
+    }
+    // Dof 7 is "forgotten": its row and column are zero (an unconstrained, unloaded dof).
+    let dead = 7;
+    for column in 0..n {
+        for &row in pattern.rows_of_column(column) {
+            if row == dead || column == dead {
+                let slot = pattern.slot(row, column).unwrap();
+                matrix.values[slot] = 0.0;
+            }
+        }
+    }
+    let mut factorization = SparseFactorization::analyze(&pattern).unwrap();
+    match factorization.factorize(&matrix) {
+        Err(LinearError::Singular { column, pivot }) => {
+            assert_eq!(column, dead);
+            assert_eq!(pivot, 0.0);
+        }
+        other => panic!("expected a singular error, got {other:?}"),
+    }
+    assert!(
+        LinearError::Singular { column: dead, pivot: 0.0 }
+            .to_string()
+            .contains("dof (column) 7")
+    );
+}
+
+#[test]
+fn free_floating_chain_is_singular() {
+    // 1-D Laplacian with free ends (Neumann): constant vectors are in the kernel.
+    let n = 30;
+    let pattern = chain_pattern(n);
+    let mut matrix = SparseMatrix::zeros(pattern.clone());
+    for i in 1..n {
+        for (row, column, value) in [(i, i, 1.0), (i - 1, i - 1, 1.0), (i, i - 1, -1.0), (i - 1, i, -1.0)] {
+            matrix.add_to(row, column, value).unwrap();
+        }
+    }
+    let mut factorization = SparseFactorization::analyze(&pattern).unwrap();
+    match factorization.factorize(&matrix) {
+        Err(LinearError::Singular { column, pivot }) => {
+            assert!(column < n);
+            assert!(pivot.abs() < 1e-12, "pivot {pivot:e}");
+        }
+        other => panic!("expected a singular error, got {other:?}"),
+    }
+}
+
+#[test]
+fn bad_inputs_give_errors() {
+    let pattern = chain_pattern(4);
+    let mut matrix = SparseMatrix::zeros(pattern.clone());
+    for i in 0..4 {
+        matrix.add_to(i, i, 1.0).unwrap();
+    }
+    matrix.add_to(2, 1, f64::NAN).unwrap();
+    let mut factorization = SparseFactorization::analyze(&pattern).unwrap();
+    assert!(matches!(
+        factorization.factorize(&matrix),
+        Err(LinearError::NonFinite { what }) if what.contains("(2, 1)")
+    ));
+    matrix.values.iter_mut().for_each(|value| *value = 0.0);
+    for i in 0..4 {
+        matrix.add_to(i, i, 1.0).unwrap();
+    }
+    factorization.factorize(&matrix).unwrap();
+    let mut short = vec![1.0; 3];
+    assert!(matches!(
+        factorization.solve_in_place(&mut short),
+        Err(LinearError::DimensionMismatch { expected: 4, found: 3, .. })
+    ));
+    let mut infinite = vec![1.0, f64::INFINITY, 0.0, 0.0];
+    assert!(matches!(
+        factorization.solve_in_place(&mut infinite),
+        Err(LinearError::NonFinite { .. })
+    ));
+}
+
+#[test]
+fn large_grid_laplacian_factorises_and_solves_quickly() {
+    // 5-point Laplacian on a 100 × 100 grid (10⁴ dofs): residual check, no dense reference.
+    let side = 100;
+    let n = side * side;
+    let index = |i: usize, j: usize| i * side + j;
+    let mut entries = Vec::new();
+    for i in 0..side {
+        for j in 0..side {
+            if i + 1 < side {
+                entries.push((index(i + 1, j), index(i, j)));
+            }
+            if j + 1 < side {
+                entries.push((index(i, j + 1), index(i, j)));
+            }
+        }
+    }
+    let pattern = Arc::new(SparsityPattern::from_symmetric_entries(n, entries.clone()).unwrap());
+    let mut matrix = SparseMatrix::zeros(pattern.clone());
+    for k in 0..n {
+        matrix.add_to(k, k, 4.0).unwrap();
+    }
+    for (row, column) in entries {
+        matrix.add_to(row, column, -1.0).unwrap();
+        matrix.add_to(column, row, -1.0).unwrap();
+    }
+    let start = std::time::Instant::now();
+    let mut factorization = SparseFactorization::analyze(&pattern).unwrap();
+    assert_eq!(factorization.factorize(&matrix).unwrap(), FactorizationKind::Cholesky);
+    let mut rng = StdRng::seed_from_u64(16);
+    let rhs = random_vector(n, &mut rng);
+    let mut solution = rhs.clone();
+    factorization.solve_in_place(&mut solution).unwrap();
+    let elapsed = start.elapsed();
+    let mut product = vec![0.0; n];
+    matrix.multiply_into(&solution, &mut product);
+    let residual: f64 = product
+        .iter()
+        .zip(&rhs)
+        .map(|(x, y)| (x - y) * (x - y))
+        .sum::<f64>()
+        .sqrt();
+    let rhs_norm = rhs.iter().map(|x| x * x).sum::<f64>().sqrt();
+    assert!(residual < 1e-12 * rhs_norm, "residual {residual:e}");
+    assert!(elapsed.as_secs_f64() < 1.0, "took {elapsed:?}");
+}

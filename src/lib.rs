@@ -1,0 +1,111 @@
+//! # wrinkle
+//!
+//! Multi-scale membrane wrinkling after Damil, Potier-Ferry & Hu (2014): envelope models of
+//! wrinkled membranes declared as energy densities, discretised with Q8 finite elements and
+//! solved by linear buckling analysis and path following (ANM, Riks).
+//!
+//! This crate is the front end: [`scene`] parses and validates scene files (TOML plus
+//! `--set KEY=VALUE` overrides), [`closed_form`] holds the independent analytic truths of the
+//! clamped rectangle (THEORY.md §8), [`commands`] glues scenes to the physics, and [`cli`] is the
+//! command-line interface of the `wrinkle` binary.
+
+pub mod cli;
+pub mod closed_form;
+pub mod commands;
+pub mod output;
+pub mod scene;
+pub mod setup;
+
+pub use scene::Scene;
+
+use std::fmt;
+
+/// Every error the front end reports. Each renders as one line (see [`fmt::Display`]) and maps
+/// to a process exit code with [`Error::exit_code`].
+#[derive(Debug)]
+pub enum Error {
+    /// A problem with a scene: syntax, unknown key, wrong type, out-of-range value, missing file.
+    Scene {
+        /// Where the offending input came from: `scene PATH` for a file, `--set KEY=VALUE` for
+        /// an override.
+        source: String,
+        /// Dotted key, e.g. `material.poisson`; empty when the problem is not tied to a key
+        /// (a syntax error, a missing file).
+        key: String,
+        /// What is wrong, e.g. `must satisfy -1 < ν < 0.5, got 0.6`.
+        message: String,
+    },
+    /// Bad command-line usage that the argument parser could not catch.
+    Usage(String),
+    /// Reading or writing a file (other than the scene itself) failed.
+    Io {
+        /// The file or directory involved.
+        path: String,
+        /// The underlying operating-system error.
+        error: std::io::Error,
+    },
+    /// A solver failed (singular tangent, no convergence, …).
+    Solver(String),
+    /// A requested feature is not implemented yet.
+    NotImplemented(String),
+}
+
+impl Error {
+    /// Process exit code: 2 for scene and usage errors (the input is wrong), 1 for everything
+    /// that went wrong while computing or writing results.
+    pub fn exit_code(&self) -> i32 {
+        match self {
+            Error::Scene { .. } | Error::Usage(_) => 2,
+            Error::Io { .. } | Error::Solver(_) | Error::NotImplemented(_) => 1,
+        }
+    }
+
+    /// Builds a [`Error::Scene`].
+    pub fn scene(
+        source: impl Into<String>,
+        key: impl Into<String>,
+        message: impl Into<String>,
+    ) -> Self {
+        Error::Scene {
+            source: source.into(),
+            key: key.into(),
+            message: message.into(),
+        }
+    }
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, formatter: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Error::Scene {
+                source,
+                key,
+                message,
+            } if key.is_empty() => {
+                write!(formatter, "{source}: {message}")
+            }
+            Error::Scene {
+                source,
+                key,
+                message,
+            } => {
+                write!(formatter, "{source}: key `{key}`: {message}")
+            }
+            Error::Usage(message) => write!(formatter, "usage: {message}"),
+            Error::Io { path, error } => write!(formatter, "{path}: {error}"),
+            Error::Solver(message) => write!(formatter, "solver: {message}"),
+            Error::NotImplemented(message) => write!(formatter, "not implemented: {message}"),
+        }
+    }
+}
+
+// `Error::Scene` has a field named `source` (the origin of the input, a string), which
+// `thiserror` would take for the error's cause; the trait is therefore implemented by hand.
+impl std::error::Error for Error {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Error::Io { error, .. } => Some(error),
+            _ => None,
+        }
+    }
+}

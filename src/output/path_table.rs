@@ -1,0 +1,112 @@
+//! The traced equilibrium path as a table: one [`PathPoint`] per row, written as CSV by
+//! [`write_path_csv`]; the same points serialise to JSON with [`serde`] (the caller assembles
+//! `summary.json`).
+
+use std::fs::File;
+use std::io::{self, BufWriter, Write};
+use std::path::Path;
+
+/// One point of a traced equilibrium path.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct PathPoint {
+    /// ANM step index (0 = the start point).
+    pub step: usize,
+    /// `true`: the series was evaluated inside a step (dense output); `false`: a step end point.
+    pub interior: bool,
+    /// Load parameter $`\lambda`$.
+    pub lambda: f64,
+    /// Membrane force $`N_x = -\lambda`$ for the biaxial load, `None` otherwise.
+    pub n_x: Option<f64>,
+    /// $`\max |w_\text{env}|`$ over the domain (mm).
+    pub max_envelope: f64,
+    /// $`\max |w_\text{env}| / h`$.
+    pub max_envelope_over_h: f64,
+    /// $`w_\text{env} / h`$ at the centre of the domain.
+    pub center_envelope_over_h: f64,
+    /// Relative residual $`\lVert R \rVert / \lVert F \rVert`$ at that point.
+    pub residual: f64,
+    /// `true` when the Legendre–Hadamard (strong ellipticity) condition holds everywhere.
+    pub elliptic: bool,
+    /// Closed-form amplitude $`w_\text{env} / h`$ at this load (THEORY eq. 61/62), when available.
+    pub closed_form_envelope_over_h: Option<f64>,
+}
+
+/// Column names of the CSV written by [`write_path_csv`], in order; they are the field names of
+/// [`PathPoint`].
+pub const PATH_CSV_COLUMNS: [&str; 10] = [
+    "step",
+    "interior",
+    "lambda",
+    "n_x",
+    "max_envelope",
+    "max_envelope_over_h",
+    "center_envelope_over_h",
+    "residual",
+    "elliptic",
+    "closed_form_envelope_over_h",
+];
+
+/// Writes the path as CSV to the file `path` (created or truncated): a header line with
+/// [`PATH_CSV_COLUMNS`], then one line per point. Numbers are written so that they parse back to
+/// the same `f64` bit for bit; booleans as `true`/`false`; `None` as an empty cell.
+pub fn write_path_csv(path: &Path, points: &[PathPoint]) -> io::Result<()> {
+    let file = File::create(path).map_err(|error| with_path(path, error))?;
+    let mut writer = BufWriter::new(file);
+    write_path_csv_to(&mut writer, points)?;
+    writer.flush().map_err(|error| with_path(path, error))
+}
+
+/// Writes the CSV of [`write_path_csv`] to any writer.
+pub fn write_path_csv_to(mut writer: impl Write, points: &[PathPoint]) -> io::Result<()> {
+    writeln!(writer, "{}", PATH_CSV_COLUMNS.join(","))?;
+    for point in points {
+        let cells = [
+            point.step.to_string(),
+            point.interior.to_string(),
+            format_number(point.lambda),
+            point.n_x.map(format_number).unwrap_or_default(),
+            format_number(point.max_envelope),
+            format_number(point.max_envelope_over_h),
+            format_number(point.center_envelope_over_h),
+            format_number(point.residual),
+            point.elliptic.to_string(),
+            point
+                .closed_form_envelope_over_h
+                .map(format_number)
+                .unwrap_or_default(),
+        ];
+        writeln!(writer, "{}", cells.join(","))?;
+    }
+    Ok(())
+}
+
+/// Shortest representation that parses back to the same `f64`: plain decimal for moderate
+/// magnitudes, scientific notation for very small or very large ones.
+fn format_number(value: f64) -> String {
+    let magnitude = value.abs();
+    if value == 0.0 || !value.is_finite() || (1e-4..1e7).contains(&magnitude) {
+        format!("{value}")
+    } else {
+        format!("{value:e}")
+    }
+}
+
+/// Prefixes an I/O error with the file it concerns.
+pub(crate) fn with_path(path: &Path, error: io::Error) -> io::Error {
+    io::Error::new(error.kind(), format!("{}: {error}", path.display()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::format_number;
+
+    #[test]
+    fn numbers_round_trip_exactly() {
+        for value in [0.0, -0.0, 0.09, 1.0 / 3.0, 1e-300, -2.5e12, 123456.789, f64::MIN_POSITIVE] {
+            let text = format_number(value);
+            assert_eq!(text.parse::<f64>().unwrap().to_bits(), value.to_bits(), "{text}");
+        }
+        assert_eq!(format_number(0.09), "0.09");
+        assert_eq!(format_number(1e-9), "1e-9");
+    }
+}

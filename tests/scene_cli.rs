@@ -1,0 +1,109 @@
+//! The `wrinkle` binary's handling of scenes: effective-scene printing, one-line errors and exit
+//! codes, and the shape of `buckle --json`.
+
+use std::process::{Command, Output};
+use wrinkle::Scene;
+use wrinkle::commands::BuckleReport;
+
+fn wrinkle(arguments: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_wrinkle"))
+        .args(arguments)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("the wrinkle binary runs")
+}
+
+#[test]
+fn scene_command_prints_an_effective_scene_that_parses_back() {
+    let output = wrinkle(&[
+        "scene",
+        "examples/scenes/long_strip.toml",
+        "--set",
+        "mesh.nx=7",
+        "--set",
+        "material.poisson=0.2",
+    ]);
+    assert_eq!(
+        output.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let text = String::from_utf8(output.stdout).unwrap();
+    let printed = Scene::from_toml_str(&text, "printed").unwrap();
+    let mut expected = Scene::load("examples/scenes/long_strip.toml").unwrap();
+    expected.mesh.elements_x = 7;
+    expected.material.poisson_ratio = 0.2;
+    assert_eq!(
+        Scene {
+            source: expected.source.clone(),
+            ..printed
+        },
+        expected
+    );
+}
+
+#[test]
+fn scene_errors_are_one_line_on_stderr_with_exit_code_two() {
+    for arguments in [
+        &["scene", "--set", "material.poisson=0.6"][..],
+        &["buckle", "--json", "--set", "material.poisson=0.6"],
+        &["run", "--set", "mesh.nx=0"],
+        &["scene", "does/not/exist.toml"],
+        &["buckle", "--set", "material.poison=0.3"],
+    ] {
+        let output = wrinkle(arguments);
+        assert_eq!(output.status.code(), Some(2), "{arguments:?}");
+        assert!(output.stdout.is_empty(), "{arguments:?}");
+        let stderr = String::from_utf8(output.stderr).unwrap();
+        assert_eq!(stderr.lines().count(), 1, "{stderr}");
+        assert!(stderr.starts_with("error: "), "{stderr}");
+    }
+    let stderr =
+        String::from_utf8(wrinkle(&["scene", "--set", "material.poisson=0.6"]).stderr).unwrap();
+    assert_eq!(
+        stderr.trim_end(),
+        "error: --set material.poisson=0.6: key `material.poisson`: must satisfy -1 < ν < 0.5, got 0.6"
+    );
+}
+
+#[test]
+fn usage_errors_exit_with_two_and_help_with_zero() {
+    assert_eq!(wrinkle(&["frobnicate"]).status.code(), Some(2));
+    assert_eq!(
+        wrinkle(&["buckle", "--no-such-flag"]).status.code(),
+        Some(2)
+    );
+    assert_eq!(wrinkle(&[]).status.code(), Some(2));
+    assert_eq!(wrinkle(&["--help"]).status.code(), Some(0));
+}
+
+#[test]
+fn buckle_json_has_the_report_keys_details_and_scene() {
+    let scene = Scene::default();
+    let report = BuckleReport {
+        model: "reference-envelope".to_string(),
+        critical_load: 0.09,
+        wavenumber: 0.2,
+        dofs: 123,
+        wavelength: std::f64::consts::PI * 10.0,
+        closed_form_critical_load: Some(0.0901),
+        details: serde_json::json!({ "eigen_iterations": 7, "critical_load": "must not overwrite" }),
+    };
+    let json = wrinkle::cli::buckle_json(&scene, &report);
+    let object = json.as_object().unwrap();
+    assert_eq!(object["model"], "reference-envelope");
+    assert_eq!(object["critical_load"], 0.09);
+    assert_eq!(object["wavenumber"], 0.2);
+    assert_eq!(object["wavelength"], std::f64::consts::PI * 10.0);
+    assert_eq!(object["dofs"], 123);
+    assert_eq!(object["closed_form_critical_load"], 0.0901);
+    assert_eq!(object["eigen_iterations"], 7);
+    assert_eq!(object["scene"], scene.echo_json());
+    let summary = wrinkle::cli::buckle_summary(&scene, &report);
+    assert!(summary.contains("N_X = -9.000000e-2"), "{summary}");
+    assert!(
+        summary.contains("relative difference -1.110e-3"),
+        "{summary}"
+    );
+}
