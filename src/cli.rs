@@ -119,7 +119,17 @@ pub fn execute(command: &Command) -> Result<(), Error> {
                 scene.output.directory = directory.display().to_string();
             }
             let directory = PathBuf::from(&scene.output.directory);
-            commands::run(&scene, &directory)?;
+            let report = commands::run(&scene, &directory)?;
+            let s = &report.summary;
+            println!(
+                "{}: {} steps, {} factorisations, linear buckling load {:.6e}, detected bifurcation {}, {}",
+                s["model"].as_str().unwrap_or(""),
+                s["steps"],
+                s["statistics"]["factorizations"],
+                s["linear_buckling_load"].as_f64().unwrap_or(f64::NAN),
+                s["detected_bifurcation"]["load"],
+                s["stop"].as_str().unwrap_or("")
+            );
             eprintln!("run finished; outputs in {}", directory.display());
             Ok(())
         }

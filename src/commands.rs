@@ -213,13 +213,17 @@ pub fn buckle(scene: &Scene) -> Result<BuckleReport, Error> {
     with_model(&scene.model.name, BuckleVisitor { scene }).unwrap_or_else(|| Err(unknown_model(scene)))
 }
 
-/// Path following of a scene, writing its outputs into `output_directory`.
-pub fn run(scene: &Scene, output_directory: &Path) -> Result<(), Error> {
-    Err(Error::NotImplemented(format!(
-        "path following of model `{}` (outputs would go to {})",
-        scene.model.name,
-        output_directory.display()
-    )))
+/// Path following of a scene, writing its outputs into `output_directory`. A path that ends by
+/// a solver failure is an `Err` too, but only after every output computed so far was written.
+pub fn run(scene: &Scene, output_directory: &Path) -> Result<crate::run::RunReport, Error> {
+    let report = crate::run::run(scene, output_directory)?;
+    if let Some(failure) = &report.failure {
+        return Err(Error::Solver(format!(
+            "{failure} (points computed so far written to {})",
+            output_directory.display()
+        )));
+    }
+    Ok(report)
 }
 
 /// The model registry: `(name, description, fields, parameters)` for every model.

@@ -13,6 +13,7 @@ pub mod cli;
 pub mod closed_form;
 pub mod commands;
 pub mod output;
+pub mod run;
 pub mod scene;
 pub mod setup;
 

@@ -355,6 +355,9 @@ fn map_plot_keeps_the_aspect_ratio_of_the_domain() {
         assert!((aspect - length / 200.0).abs() < 0.02 * length / 200.0, "{width} × {height}");
         let svg = std::fs::read_to_string(dir.join(format!("{name}.svg"))).unwrap();
         assert!(svg.contains("X (mm)") && svg.contains("Y (mm)"));
+        // The cells are one embedded PNG image, not one element per cell.
+        assert_eq!(svg.matches("href=\"data:image/png;base64,").count(), 1);
+        assert!(svg.len() < 2_000_000, "SVG of {} bytes", svg.len());
     }
     let error = plot_map(&dir.join("bad"), "t", [0.0, 1.0, 0.0, 1.0], 3, 3, &[0.0; 8]).unwrap_err();
     assert_eq!(error.kind(), io::ErrorKind::InvalidInput);

@@ -41,6 +41,8 @@ pub struct Problem<M: EnergyModel> {
     pub assembler: Assembler<M>,
     /// $`F_0`$, $`F_1`$.
     pub loads: LoadVectors,
+    /// $`\|\partial R/\partial\lambda(0, 0)\|`$, computed on first use.
+    load_rate_norm: std::sync::OnceLock<f64>,
 }
 
 impl<M: EnergyModel> Problem<M> {
@@ -63,7 +65,11 @@ impl<M: EnergyModel> Problem<M> {
         let dofs = Arc::new(DofMap::new(&mesh, field_count, conditions)?);
         let loads = LoadVectors::assemble(&mesh, &dofs, tractions, body_loads)?;
         let assembler = Assembler::new(model, mesh, dofs)?;
-        Ok(Problem { assembler, loads })
+        Ok(Problem {
+            assembler,
+            loads,
+            load_rate_norm: std::sync::OnceLock::new(),
+        })
     }
 
     /// The dof map.
@@ -145,14 +151,21 @@ impl<M: EnergyModel> Problem<M> {
         }
     }
 
-    /// Scale for relative residuals at load `load`: $`\max(\|R(0,\lambda)\|, \|F_0\| + |\lambda|\|F_1\|)`$,
-    /// or 1 when both vanish.
+    /// Scale for relative residuals at load `load`:
+    /// $`\|F_0\| + |\lambda|\,\|\partial R/\partial\lambda(0,0)\|`$ — the external force, or for
+    /// displacement control the reaction of the linearised problem — or 1 when it vanishes.
     pub fn residual_scale(&self, load: f64) -> f64 {
-        let zero = vec![0.0; self.free_count()];
-        let r0 = norm(&self.residual(&zero, load));
-        let f = norm(&self.loads.fixed) + load.abs() * norm(&self.loads.proportional);
-        let s = r0.max(f);
+        let rate = *self.load_rate_norm.get_or_init(|| {
+            let zero = vec![0.0; self.free_count()];
+            norm(&self.load_derivative(&zero, 0.0))
+        });
+        let s = norm(&self.loads.fixed) + load.abs() * rate;
         if s > 0.0 { s } else { 1.0 }
+    }
+
+    /// $`\|R(U,\lambda)\|`$ relative to [`Self::residual_scale`].
+    pub fn relative_residual(&self, free: &[f64], load: f64) -> f64 {
+        norm(&self.residual(free, load)) / self.residual_scale(load)
     }
 }
 

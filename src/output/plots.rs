@@ -6,6 +6,7 @@
 //! graphics (`STEM.svg`). Text uses the DejaVu Sans font bundled in `assets/fonts/`, so the
 //! pictures look the same on machines without system fonts.
 
+use super::path_table::with_path;
 use super::vtu::check_bounds;
 use super::{OutputError, check_length, invalid};
 use plotters::coord::Shift;
@@ -209,6 +210,18 @@ fn render(stem: &Path, size: (u32, u32), figure: &impl Figure) -> io::Result<()>
         figure.draw(&root).map_err(|error| plotting_error(&svg, error))?;
         root.present().map_err(|error| plotting_error(&svg, error))?;
     }
+    fix_embedded_image_type(&svg)
+}
+
+/// plotters-svg embeds bitmaps as `data:png;base64,…`, which is not a MIME type; browsers and
+/// editors expect `data:image/png;base64,…`.
+fn fix_embedded_image_type(svg: &Path) -> io::Result<()> {
+    const WRONG: &str = "href=\"data:png;base64,";
+    let text = std::fs::read_to_string(svg).map_err(|error| with_path(svg, error))?;
+    if text.contains(WRONG) {
+        let fixed = text.replace(WRONG, "href=\"data:image/png;base64,");
+        std::fs::write(svg, fixed).map_err(|error| with_path(svg, error))?;
+    }
     Ok(())
 }
 
@@ -219,6 +232,8 @@ const TITLE_SIZE: f64 = 30.0;
 const AXIS_DESCRIPTION_SIZE: f64 = 24.0;
 const TICK_LABEL_SIZE: f64 = 20.0;
 const LEGEND_SIZE: f64 = 20.0;
+/// Width reserved for the legend glyph (36 pixels) and the gap before the text.
+const LEGEND_GLYPH_AREA: u32 = 50;
 
 /// Colours of curves in a plot.
 #[derive(Clone, Copy)]
@@ -426,10 +441,13 @@ impl Figure for CurveFigure<'_> {
             .y_desc(self.y_label)
             .label_style(tick_style)
             .axis_desc_style(description_style)
-            .light_line_style(RGBColor(235, 235, 235))
-            .bold_line_style(RGBColor(205, 205, 205))
+            .light_line_style(RGBColor(240, 240, 240))
+            .bold_line_style(RGBColor(210, 210, 210))
+            .max_light_lines(1)
             .x_labels(8)
             .y_labels(8)
+            .x_label_formatter(&|v| format_coordinate(*v))
+            .y_label_formatter(&|v| format_coordinate(*v))
             .draw()?;
 
         let (pixel_x, pixel_y) = chart.plotting_area().get_pixel_range();
@@ -459,7 +477,14 @@ impl Figure for CurveFigure<'_> {
             } else {
                 line_pixel - 8 - text_width as i32
             };
-            let top_pixel = 8 + index as i32 * (text_height as i32 + 8);
+            let top_pixel = 8 + index as i32 * (text_height as i32 + 10);
+            plot_area.draw(&Rectangle::new(
+                [
+                    (left - 3, top_pixel - 2),
+                    (left + text_width as i32 + 3, top_pixel + text_height as i32 + 3),
+                ],
+                WHITE.mix(0.85).filled(),
+            ))?;
             plot_area.draw(&Text::new(marker.label.clone(), (left, top_pixel), &label_style))?;
             // Mark the label box as occupied for the legend placement.
             for i in 0..=10 {
@@ -476,7 +501,7 @@ impl Figure for CurveFigure<'_> {
         for (index, curve) in self.curves.iter().enumerate() {
             let color = self.palette.color(index, count);
             let segments = finite_runs(&curve.points);
-            let line_style = color.stroke_width(3);
+            let line_style = color.stroke_width(2);
             let series_label = match &curve.style {
                 CurveStyle::Line | CurveStyle::LineWithMarkers(_) => {
                     let mut annotation = None;
@@ -531,13 +556,14 @@ impl Figure for CurveFigure<'_> {
                 widest = widest.max(root.estimate_text_size(&curve.label, &legend_style)?.0);
             }
             // Legend box in pixels: glyph (≈ 40), gaps, text; rows of ≈ 1.5 × font size.
-            let legend_width = (widest as f64 + 70.0) / plot_width;
+            let legend_width = (widest as f64 + LEGEND_GLYPH_AREA as f64 + 40.0) / plot_width;
             let legend_height = (labelled.len() as f64 * 1.5 * LEGEND_SIZE + 20.0) / plot_height;
             let position = self.legend_position(&occupied, (legend_width, legend_height));
             chart
                 .configure_series_labels()
                 .position(position)
                 .margin(12)
+                .legend_area_size(LEGEND_GLYPH_AREA)
                 .label_font(legend_style)
                 .background_style(WHITE.mix(0.85))
                 .border_style(RGBColor(160, 160, 160))
@@ -713,6 +739,8 @@ impl Figure for MapFigure<'_> {
             .axis_desc_style((FONT, AXIS_DESCRIPTION_SIZE))
             .x_labels(x_ticks)
             .y_labels(y_ticks)
+            .x_label_formatter(&|v| format_coordinate(*v))
+            .y_label_formatter(&|v| format_coordinate(*v))
             .draw()?;
 
         // Cells as one raster image of the plot area (embedded as PNG in the SVG file): each
@@ -755,6 +783,7 @@ impl Figure for MapFigure<'_> {
         bar.configure_mesh()
             .disable_mesh()
             .disable_x_axis()
+            .set_tick_mark_size(LabelAreaPosition::Right, 8)
             .label_style((FONT, TICK_LABEL_SIZE))
             .y_labels(if self.plot_size.1 < 250 { 5 } else { 9 })
             .y_label_formatter(&format)
@@ -780,6 +809,18 @@ impl Figure for MapFigure<'_> {
         )))?;
         Ok(())
     }
+}
+
+/// Tick text of an axis: plain decimals without trailing zeros (`0.1`, `200`), scientific
+/// notation for very small or very large magnitudes.
+fn format_coordinate(value: f64) -> String {
+    let magnitude = value.abs();
+    if magnitude != 0.0 && !(1e-4..1e6).contains(&magnitude) {
+        return format!("{value:.3e}");
+    }
+    let text = format!("{:.6}", value);
+    let text = text.trim_end_matches('0').trim_end_matches('.');
+    if text == "-0" { "0".to_string() } else { text.to_string() }
 }
 
 /// Tick text with as many decimals as the scale needs.

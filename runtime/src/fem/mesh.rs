@@ -217,3 +217,104 @@ mod tests {
         assert!(Mesh::rectangle(1.0, 1.0, 2, 2, 0.5).is_err());
     }
 }
+
+impl Mesh {
+    /// The element containing `point` and its reference coordinates $`(\xi,\eta)`$, by a
+    /// bounding-box search and Newton inversion of the isoparametric map (one iteration for the
+    /// affine elements of [`Mesh::rectangle`]). `None` outside the mesh.
+    pub fn locate(&self, point: [f64; 2]) -> Option<(usize, [f64; 2])> {
+        use super::element::Quad8;
+        let tolerance = 1e-10;
+        for (e, nodes) in self.elements.iter().enumerate() {
+            let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+            for &n in nodes {
+                let [x, y] = self.nodes[n];
+                x0 = x0.min(x);
+                x1 = x1.max(x);
+                y0 = y0.min(y);
+                y1 = y1.max(y);
+            }
+            let slack = tolerance * ((x1 - x0) + (y1 - y0));
+            if point[0] < x0 - slack || point[0] > x1 + slack || point[1] < y0 - slack || point[1] > y1 + slack {
+                continue;
+            }
+            let coordinates = self.element_coordinates(e);
+            let mut reference = [0.0, 0.0];
+            for _ in 0..20 {
+                let n = Quad8::shape_values(reference[0], reference[1]);
+                let dn = Quad8::shape_reference_gradients(reference[0], reference[1]);
+                let mut x = [0.0; 2];
+                let mut jac = [[0.0; 2]; 2];
+                for k in 0..QUAD8_NODES {
+                    for a in 0..2 {
+                        x[a] += n[k] * coordinates[k][a];
+                        for b in 0..2 {
+                            jac[a][b] += coordinates[k][a] * dn[k][b];
+                        }
+                    }
+                }
+                let r = [point[0] - x[0], point[1] - x[1]];
+                let det = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
+                if det.abs() < f64::MIN_POSITIVE {
+                    break;
+                }
+                let d = [
+                    (jac[1][1] * r[0] - jac[0][1] * r[1]) / det,
+                    (-jac[1][0] * r[0] + jac[0][0] * r[1]) / det,
+                ];
+                reference[0] += d[0];
+                reference[1] += d[1];
+                if d[0].abs() + d[1].abs() < 1e-14 {
+                    break;
+                }
+            }
+            if reference[0].abs() <= 1.0 + 1e-9 && reference[1].abs() <= 1.0 + 1e-9 {
+                return Some((e, reference));
+            }
+        }
+        None
+    }
+
+    /// Value at `point` of a nodal field stored node-major with `field_count` fields per node
+    /// (`values[node * field_count + field]`). `None` outside the mesh.
+    pub fn interpolate(&self, values: &[f64], field_count: usize, field: usize, point: [f64; 2]) -> Option<f64> {
+        let (e, [xi, eta]) = self.locate(point)?;
+        let n = super::element::Quad8::shape_values(xi, eta);
+        Some(
+            self.elements[e]
+                .iter()
+                .enumerate()
+                .map(|(k, &node)| n[k] * values[node * field_count + field])
+                .sum(),
+        )
+    }
+
+    /// Bounding box `[x0, x1, y0, y1]`.
+    pub fn bounds(&self) -> [f64; 4] {
+        let mut b = [f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY];
+        for [x, y] in &self.nodes {
+            b[0] = b[0].min(*x);
+            b[1] = b[1].max(*x);
+            b[2] = b[2].min(*y);
+            b[3] = b[3].max(*y);
+        }
+        b
+    }
+}
+
+#[cfg(test)]
+mod locate_tests {
+    use super::*;
+
+    #[test]
+    fn interpolation_reproduces_quadratics_on_graded_mesh() {
+        let mesh = Mesh::rectangle(4.0, 3.0, 5, 4, 3.0).unwrap();
+        let f = |x: f64, y: f64| 1.0 + x - 2.0 * y + 0.3 * x * x - 0.2 * x * y + 0.1 * y * y;
+        let values: Vec<f64> = mesh.nodes.iter().map(|p| f(p[0], p[1])).collect();
+        for p in [[0.0, 0.0], [4.0, 3.0], [1.234, 2.5], [2.0, 1.5], [3.99, 0.01]] {
+            let v = mesh.interpolate(&values, 1, 0, p).unwrap();
+            assert!((v - f(p[0], p[1])).abs() < 1e-12, "{p:?}");
+        }
+        assert!(mesh.interpolate(&values, 1, 0, [4.5, 1.0]).is_none());
+    }
+}

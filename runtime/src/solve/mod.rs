@@ -7,3 +7,6 @@ pub mod newton;
 
 pub use error::SolveError;
 pub mod ellipticity;
+pub mod path;
+pub mod anm;
+pub mod riks;

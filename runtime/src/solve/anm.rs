@@ -1,0 +1,402 @@
+//! Asymptotic Numerical Method (ANM): path following by truncated power series (THEORY.md §10).
+//!
+//! From a regular point $`(U_0,\lambda_0)`$ the branch is expanded as
+//! $`U(a) = U_0 + \sum_{n=1}^N a^n U_n`$, $`\lambda(a) = \lambda_0 + \sum_{n=1}^N a^n\lambda_n`$ in
+//! the path parameter $`a = \langle U - U_0, U_1\rangle + (\lambda-\lambda_0)\lambda_1`$.
+//! With $`K_t = \partial R/\partial U(U_0,\lambda_0)`$ factorised **once per step** and
+//! $`F = -\partial R/\partial\lambda`$:
+//! * order 1: $`K_t\hat U = F`$, $`\lambda_1 = \pm(1 + \|\hat U\|^2)^{-1/2}`$, $`U_1 = \lambda_1\hat U`$;
+//! * order $`n\ge2`$: $`K_t\hat U_n = F^{nl}_n`$ with $`F^{nl}_n`$ minus the $`a^n`$ coefficient of
+//!   $`R(\sum_{k<n} a^kU_k, \sum_{k<n}a^k\lambda_k)`$ — obtained by running the model's generated
+//!   residual kernels on truncated series ([`Series`]); no model-specific code — then
+//!   $`\lambda_n = -\lambda_1\langle\hat U_n, U_1\rangle`$ and $`U_n = \lambda_n\hat U + \hat U_n`$.
+//!
+//! Step length $`a_{\max} = (\epsilon\|U_1\|/\|U_N\|)^{1/(N-1)}`$ or, optionally, the Padé
+//! approximants' longer range. The residual is checked at the end of every step; a Newton
+//! correction brings it back under the tolerance when needed (or the step is halved).
+
+use super::error::SolveError;
+use super::newton::{NewtonOptions, newton};
+use super::path::{PathControl, PathEvent, PathResult, PathState, PathStatistics, PathStop};
+use crate::linear::eigen::{BucklingOptions, smallest_positive_buckling};
+use crate::linear::factor::SparseFactorization;
+use crate::linear::pattern::SparseMatrix;
+use crate::model::EnergyModel;
+use crate::problem::Problem;
+use crate::series::{MAX_SERIES_LEN, PadeApproximant, PathSeries, Series, geometric_ratio, series_step_length};
+use std::time::Instant;
+
+/// Settings of [`follow_path_anm`].
+#[derive(Clone, Debug)]
+pub struct AnmOptions {
+    /// Truncation order $`N`$ (2 ≤ N ≤ 40).
+    pub order: usize,
+    /// $`\epsilon`$ of the step-length rule.
+    pub series_tolerance: f64,
+    /// Largest accepted relative residual at a step end.
+    pub residual_tolerance: f64,
+    /// Step budget.
+    pub max_steps: usize,
+    /// Stop at this load (`None`: no limit).
+    pub max_load: Option<f64>,
+    /// Use Padé approximants (common denominator) for the step range and evaluation.
+    pub pade: bool,
+    /// Points evaluated inside each step (dense output).
+    pub interior_points: usize,
+    /// Newton settings of the corrector.
+    pub corrector: NewtonOptions,
+    /// Predict the bifurcation load from each step's tangent (one shift-invert eigen-solve per
+    /// step with the already factorised tangent).
+    pub predict_bifurcation: bool,
+    /// Cap on the path parameter of one step (used when the series is exactly polynomial).
+    pub max_step_length: f64,
+}
+
+impl Default for AnmOptions {
+    fn default() -> Self {
+        AnmOptions {
+            order: 20,
+            series_tolerance: 1e-7,
+            residual_tolerance: 1e-6,
+            max_steps: 200,
+            max_load: None,
+            pade: false,
+            interior_points: 10,
+            corrector: NewtonOptions {
+                tolerance: 1e-9,
+                max_iterations: 12,
+            },
+            predict_bifurcation: true,
+            max_step_length: 1.0,
+        }
+    }
+}
+
+/// Per-step diagnostics kept by the solver.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AnmStep {
+    /// Step index.
+    pub step: usize,
+    /// Load at the start and end.
+    pub load_range: (f64, f64),
+    /// Path-parameter range used.
+    pub step_length: f64,
+    /// Range the plain series allowed (for comparison with Padé).
+    pub series_step_length: f64,
+    /// Range Padé allowed (when enabled).
+    pub pade_step_length: Option<f64>,
+    /// Relative residual at the end point before any correction.
+    pub end_residual: f64,
+    /// Newton iterations of the correction (0 = none needed).
+    pub correction_iterations: usize,
+    /// Radius of convergence estimated from a geometric tail of the series, if any.
+    pub geometric_radius: Option<f64>,
+    /// Bifurcation load predicted by linear buckling about the step's start.
+    pub predicted_bifurcation: Option<f64>,
+}
+
+/// Computes the series of one step at `state`, whose tangent `factor` holds.
+/// Returns the path series (orders 0..=N) and $`\hat U`$.
+pub fn compute_series<M: EnergyModel>(
+    problem: &Problem<M>,
+    state: &PathState,
+    factor: &SparseFactorization,
+    order: usize,
+    previous_direction: Option<(&[f64], f64)>,
+) -> Result<(PathSeries, Vec<f64>), SolveError> {
+    let n = problem.free_count();
+    let order = order.clamp(2, MAX_SERIES_LEN - 2);
+    // Order 1.
+    let mut u_hat: Vec<f64> = problem
+        .load_derivative(&state.displacement, state.load)
+        .iter()
+        .map(|v| -v)
+        .collect();
+    factor
+        .solve_in_place(&mut u_hat)
+        .map_err(SolveError::linear(format!("ANM order 1 at load {:.6e}", state.load)))?;
+    let norm2: f64 = u_hat.iter().map(|v| v * v).sum();
+    let mut lambda1 = 1.0 / (1.0 + norm2).sqrt();
+    if let Some((u_prev, l_prev)) = previous_direction {
+        let dot: f64 = u_hat.iter().zip(u_prev).map(|(a, b)| a * b).sum::<f64>() * lambda1 + lambda1 * l_prev;
+        if dot < 0.0 {
+            lambda1 = -lambda1;
+        }
+    }
+    let u1: Vec<f64> = u_hat.iter().map(|v| v * lambda1).collect();
+    let mut displacement = vec![state.displacement.clone(), u1];
+    let mut load = vec![state.load, lambda1];
+    for k in 2..=order {
+        // Series of the unknowns truncated at order k−1, evaluated to order k.
+        let mut free = vec![Series::zeros(k + 1); n];
+        for (i, s) in free.iter_mut().enumerate() {
+            let c = s.coefficients_mut();
+            for (j, u) in displacement.iter().enumerate() {
+                c[j] = u[i];
+            }
+        }
+        let mut load_series = Series::zeros(k + 1);
+        {
+            let c = load_series.coefficients_mut();
+            c[..k].copy_from_slice(&load);
+        }
+        let residual = problem.residual(&free, load_series);
+        let mut rhs: Vec<f64> = residual.iter().map(|r| -r.coefficient(k)).collect();
+        if rhs.iter().any(|v| !v.is_finite()) {
+            return Err(SolveError::NonFinite {
+                location: format!("ANM right-hand side of order {k} at load {:.6e}", state.load),
+            });
+        }
+        factor
+            .solve_in_place(&mut rhs)
+            .map_err(SolveError::linear(format!("ANM order {k} at load {:.6e}", state.load)))?;
+        let dot: f64 = rhs.iter().zip(&displacement[1]).map(|(a, b)| a * b).sum();
+        let lambda_k = -lambda1 * dot;
+        let u_k: Vec<f64> = rhs.iter().zip(&u_hat).map(|(r, h)| r + lambda_k * h).collect();
+        displacement.push(u_k);
+        load.push(lambda_k);
+    }
+    let series = PathSeries::new(displacement, load).map_err(|e| SolveError::Path {
+        load: state.load,
+        message: format!("series: {e}"),
+    })?;
+    Ok((series, u_hat))
+}
+
+fn evaluate(series: &PathSeries, pade: Option<&PadeApproximant>, a: f64) -> PathState {
+    let (displacement, load) = match pade {
+        Some(p) => p.evaluate(a),
+        None => series.evaluate(a),
+    };
+    PathState { displacement, load }
+}
+
+/// Traces the path from `start` with the ANM; every accepted point (step ends and the
+/// `interior_points` inside each step) goes to `observer`. Never panics on a numerical failure:
+/// the result keeps the last accepted point and says why it stopped.
+pub fn follow_path_anm<M: EnergyModel>(
+    problem: &Problem<M>,
+    start: PathState,
+    factor: &mut SparseFactorization,
+    options: &AnmOptions,
+    observer: &mut dyn FnMut(&PathEvent) -> PathControl,
+    steps_log: &mut Vec<AnmStep>,
+) -> PathResult {
+    let begin = Instant::now();
+    let mut statistics = PathStatistics::default();
+    let mut matrix = problem.new_matrix();
+    let mut state = start;
+    let mut bifurcation = None;
+    let mut previous: Option<(Vec<f64>, f64)> = None;
+    let finish = |state: PathState, mut statistics: PathStatistics, stop: PathStop, bifurcation| {
+        statistics.total_seconds = begin.elapsed().as_secs_f64();
+        PathResult {
+            last: state,
+            statistics,
+            stop,
+            bifurcation,
+        }
+    };
+    let start_residual = problem.relative_residual(&state.displacement, state.load);
+    statistics.residual_assemblies += 1;
+    if observer(&PathEvent {
+        step: 0,
+        interior: false,
+        state: &state,
+        relative_residual: start_residual,
+        predicted_bifurcation: None,
+    }) == PathControl::Stop
+    {
+        return finish(state, statistics, PathStop::Observer, bifurcation);
+    }
+    for step in 1..=options.max_steps {
+        // One tangent factorisation per step.
+        let t = Instant::now();
+        problem.tangent_into(&state.displacement, state.load, &mut matrix);
+        statistics.tangent_assemblies += 1;
+        statistics.assembly_seconds += t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        if let Err(e) = factor.factorize(&matrix) {
+            let error = SolveError::linear(format!(
+                "ANM step {step} at load {:.6e}: tangent factorisation",
+                state.load
+            ))(e);
+            return finish(state, statistics, PathStop::Failed(error), bifurcation);
+        }
+        statistics.factorizations += 1;
+        statistics.factorization_seconds += t.elapsed().as_secs_f64();
+
+        let t = Instant::now();
+        let direction = previous.as_ref().map(|(u, l)| (u.as_slice(), *l));
+        let (series, u_hat) = match compute_series(problem, &state, factor, options.order, direction) {
+            Ok(s) => s,
+            Err(e) => return finish(state, statistics, PathStop::Failed(e), bifurcation),
+        };
+        statistics.series_assemblies += series.order() - 1;
+        statistics.series_seconds += t.elapsed().as_secs_f64();
+
+        // Bifurcation predicted by linear buckling about this point along the path tangent.
+        let predicted = if options.predict_bifurcation && series.load[1] > 0.0 {
+            let t = Instant::now();
+            let p = predict_bifurcation(problem, &state, &u_hat, factor, &matrix);
+            statistics.bifurcation_seconds += t.elapsed().as_secs_f64();
+            p
+        } else {
+            None
+        };
+
+        let plain = series_step_length(&series, options.series_tolerance);
+        let pade = if options.pade {
+            PadeApproximant::new(&series).ok()
+        } else {
+            None
+        };
+        let pade_length = pade.as_ref().map(|p| p.pade_step_length(options.series_tolerance));
+        let mut a = match pade_length {
+            Some(l) if l.is_finite() && l > plain => l,
+            _ => plain,
+        };
+        let evaluator = |a: f64| {
+            let use_pade = pade_length.is_some_and(|l| l > plain && a > plain);
+            evaluate(&series, if use_pade { pade.as_ref() } else { None }, a)
+        };
+        if !a.is_finite() {
+            a = options.max_step_length;
+        }
+        a = a.min(options.max_step_length);
+        let mut hit_max_load = false;
+        if let Some(max_load) = options.max_load {
+            if evaluator(a).load >= max_load && state.load < max_load {
+                // Bisection for λ(a*) = max_load.
+                let (mut lo, mut hi) = (0.0, a);
+                for _ in 0..60 {
+                    let mid = 0.5 * (lo + hi);
+                    if evaluator(mid).load < max_load { lo = mid } else { hi = mid }
+                }
+                a = hi;
+                hit_max_load = true;
+            }
+        }
+        // End point, residual check, correction or halving.
+        let mut attempts = 0;
+        let (end, end_residual, corrections) = loop {
+            let candidate = evaluator(a);
+            let residual = problem.relative_residual(&candidate.displacement, candidate.load);
+            statistics.residual_assemblies += 1;
+            if residual.is_finite() && residual <= options.residual_tolerance {
+                break (candidate, residual, 0);
+            }
+            let corrected = if residual.is_finite() {
+                newton(
+                    problem,
+                    candidate.displacement.clone(),
+                    candidate.load,
+                    factor,
+                    &mut matrix,
+                    &options.corrector,
+                )
+                .ok()
+            } else {
+                None
+            };
+            if let Some(c) = corrected {
+                statistics.factorizations += c.iterations;
+                statistics.tangent_assemblies += c.iterations;
+                statistics.corrections += 1;
+                if c.relative_residual <= options.residual_tolerance {
+                    break (
+                        PathState {
+                            displacement: c.solution,
+                            load: candidate.load,
+                        },
+                        c.relative_residual,
+                        c.iterations,
+                    );
+                }
+            }
+            statistics.rejected_steps += 1;
+            attempts += 1;
+            a *= 0.5;
+            hit_max_load = false;
+            if attempts > 12 {
+                let error = SolveError::Path {
+                    load: state.load,
+                    message: format!(
+                        "step {step}: residual {residual:.3e} above tolerance {:.1e} even after 12 halvings and Newton corrections",
+                        options.residual_tolerance
+                    ),
+                };
+                return finish(state, statistics, PathStop::Failed(error), bifurcation);
+            }
+        };
+        // If the end point was corrected, the interior points still come from the series
+        // (their residual is reported as computed).
+        for k in 1..=options.interior_points {
+            let s = a * k as f64 / (options.interior_points + 1) as f64;
+            let inner = evaluator(s);
+            let residual = problem.relative_residual(&inner.displacement, inner.load);
+            statistics.residual_assemblies += 1;
+            let control = observer(&PathEvent {
+                step,
+                interior: true,
+                state: &inner,
+                relative_residual: residual,
+                predicted_bifurcation: predicted,
+            });
+            if control == PathControl::Stop {
+                statistics.steps = step;
+                return finish(inner, statistics, PathStop::Observer, bifurcation);
+            }
+        }
+        if let Some(p) = predicted {
+            if bifurcation.is_none() && state.load < p && end.load >= p {
+                bifurcation = Some((p, step));
+            }
+        }
+        steps_log.push(AnmStep {
+            step,
+            load_range: (state.load, end.load),
+            step_length: a,
+            series_step_length: plain,
+            pade_step_length: pade_length,
+            end_residual,
+            correction_iterations: corrections,
+            geometric_radius: geometric_ratio(&series),
+            predicted_bifurcation: predicted,
+        });
+        statistics.steps = step;
+        previous = Some((series.displacement[1].clone(), series.load[1]));
+        state = end;
+        if observer(&PathEvent {
+            step,
+            interior: false,
+            state: &state,
+            relative_residual: end_residual,
+            predicted_bifurcation: predicted,
+        }) == PathControl::Stop
+        {
+            return finish(state, statistics, PathStop::Observer, bifurcation);
+        }
+        if hit_max_load {
+            return finish(state, statistics, PathStop::MaxLoad, bifurcation);
+        }
+    }
+    finish(state, statistics, PathStop::MaxSteps, bifurcation)
+}
+
+/// Smallest bifurcation load ahead, from linear buckling about `state` along the path tangent
+/// $`dU/d\lambda = \hat U`$: $`(K_t + \mu\,\partial_\lambda K_t)\varphi = 0`$, $`\lambda_b = \lambda + \mu`$.
+fn predict_bifurcation<M: EnergyModel>(
+    problem: &Problem<M>,
+    state: &PathState,
+    u_hat: &[f64],
+    factor: &SparseFactorization,
+    tangent: &SparseMatrix,
+) -> Option<f64> {
+    let mut b = problem.new_matrix();
+    problem.tangent_derivative_into(&state.displacement, state.load, u_hat, 1.0, &mut b);
+    let options = BucklingOptions::default();
+    smallest_positive_buckling(tangent, factor, &b, &options)
+        .ok()
+        .and_then(|s| s.modes.first().map(|m| state.load + m.load_factor))
+}

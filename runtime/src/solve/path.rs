@@ -1,0 +1,112 @@
+//! Types shared by the path-following solvers ([`anm`](super::anm), [`riks`](super::riks)).
+//!
+//! A solver traces $`R(U,\lambda) = 0`$ from a start point and reports every accepted point to
+//! an observer, which decides whether to go on (stop criteria that depend on the physics, such
+//! as the envelope amplitude, live with the caller; the solver knows only the residual).
+
+use super::error::SolveError;
+
+/// A point $`(U, \lambda)`$ of the path.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PathState {
+    /// Free dof values.
+    pub displacement: Vec<f64>,
+    /// Load parameter.
+    pub load: f64,
+}
+
+/// One accepted point as reported to the observer.
+#[derive(Clone, Debug)]
+pub struct PathEvent<'a> {
+    /// Step index (0 = the start point).
+    pub step: usize,
+    /// `true` for a point inside a step (dense output from the series), `false` for a step's
+    /// end point (or the start point).
+    pub interior: bool,
+    /// The point.
+    pub state: &'a PathState,
+    /// Relative residual $`\|R\|/\text{scale}`$ at the point.
+    pub relative_residual: f64,
+    /// Predicted bifurcation load from the tangent at this step's start, when computed.
+    pub predicted_bifurcation: Option<f64>,
+}
+
+/// What the observer wants after an event.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PathControl {
+    /// Go on.
+    Continue,
+    /// Stop after this point (the caller's criterion was met).
+    Stop,
+}
+
+/// Why a path ended.
+#[derive(Debug)]
+pub enum PathStop {
+    /// The observer asked to stop.
+    Observer,
+    /// The maximum load was reached.
+    MaxLoad,
+    /// The step budget was used up.
+    MaxSteps,
+    /// A failure; every point before it was reported and is kept.
+    Failed(SolveError),
+}
+
+impl PathStop {
+    /// Human-readable reason.
+    pub fn describe(&self) -> String {
+        match self {
+            PathStop::Observer => "stop criterion reached".into(),
+            PathStop::MaxLoad => "maximum load reached".into(),
+            PathStop::MaxSteps => "maximum number of steps reached".into(),
+            PathStop::Failed(e) => format!("failed: {e}"),
+        }
+    }
+    /// Whether the path ended by a failure.
+    pub fn is_failure(&self) -> bool {
+        matches!(self, PathStop::Failed(_))
+    }
+}
+
+/// Work counters and timings of a path.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PathStatistics {
+    /// Accepted steps.
+    pub steps: usize,
+    /// Numeric factorisations of the tangent.
+    pub factorizations: usize,
+    /// Tangent assemblies.
+    pub tangent_assemblies: usize,
+    /// `f64` residual assemblies.
+    pub residual_assemblies: usize,
+    /// Series-residual assemblies (ANM right-hand sides).
+    pub series_assemblies: usize,
+    /// Newton corrections applied (ANM) / Newton iterations (Riks).
+    pub corrections: usize,
+    /// Rejected step attempts (step halved).
+    pub rejected_steps: usize,
+    /// Seconds in tangent assembly.
+    pub assembly_seconds: f64,
+    /// Seconds in numeric factorisation.
+    pub factorization_seconds: f64,
+    /// Seconds computing series terms (ANM) including their solves.
+    pub series_seconds: f64,
+    /// Seconds in bifurcation prediction (eigen-solves).
+    pub bifurcation_seconds: f64,
+    /// Wall time of the whole path.
+    pub total_seconds: f64,
+}
+
+/// The outcome of a path-following run: whatever was computed, and why it ended.
+#[derive(Debug)]
+pub struct PathResult {
+    /// Last accepted point.
+    pub last: PathState,
+    /// Counters and timings.
+    pub statistics: PathStatistics,
+    /// Why it ended.
+    pub stop: PathStop,
+    /// Bifurcation detected along the path: load, and the step at which it was detected.
+    pub bifurcation: Option<(f64, usize)>,
+}
