@@ -217,9 +217,22 @@ impl ModelVisitor for RunVisitor<'_> {
             if max_envelope / h >= target { PathControl::Stop } else { PathControl::Continue }
         };
 
-        let start = PathState {
-            displacement: vec![0.0; problem.free_count()],
-            load: 0.0,
+        // Start on the path: equilibrium at λ = 0 under the fixed loads (tension, perturbation).
+        let start = {
+            let mut matrix = problem.new_matrix();
+            let solution = wrinkle_runtime::solve::newton::newton(
+                &problem,
+                vec![0.0; problem.free_count()],
+                0.0,
+                &mut factor,
+                &mut matrix,
+                &NewtonOptions::default(),
+            )
+            .map_err(|e| Error::Solver(format!("equilibrium at zero load: {e}")))?;
+            PathState {
+                displacement: solution.solution,
+                load: 0.0,
+            }
         };
         let max_load = (scene.solver.max_load > 0.0).then_some(scene.solver.max_load);
         let mut anm_steps: Vec<AnmStep> = Vec::new();

@@ -1,10 +1,12 @@
 //! From a scene to a discrete [`Problem`]: mesh, boundary conditions, loads, model parameters.
 //!
 //! Load kinds (key `load.kind`):
-//! * `biaxial` (the paper's example 1): rollers $`u = 0`$ on `left`, $`v = 0`$ on `bottom`;
-//!   traction $`(0, N_Y)`$ on `top` (fixed), $`(-\lambda, 0)`$ on `right`, so that the membrane
-//!   state is exactly uniform, $`N_X = -\lambda`$, $`N_Y`$; envelope $`w = 0`$ on every edge
-//!   (clamped plate). $`\lambda`$ is in N/mm.
+//! * `biaxial` (the paper's example 1): self-equilibrated tractions on all four edges —
+//!   $`(\pm\lambda, 0)`$ on `left`/`right` (compression $`N_X = -\lambda`$, N/mm, proportional),
+//!   $`(0, \pm N_Y)`$ on `bottom`/`top` (fixed) — with the in-plane rigid-body motions removed at
+//!   two points only ($`u = v = 0`$ at the centre, $`v = 0`$ at the middle of the right edge), so the
+//!   pre-buckling membrane state is exactly uniform and the problem symmetric; envelope
+//!   $`w = 0`$ on every edge (clamped plate).
 //! * `strip` (example 2): short sides clamped, $`u = 0`$ on `left`, $`u = \lambda`$ on `right`
 //!   (mm), $`v = w = 0`$ on both; long sides free.
 
@@ -107,23 +109,25 @@ pub fn build_problem<M: EnergyModel>(scene: &Scene, model: M, perturbation: f64)
     let mut tractions = Vec::new();
     match scene.load.kind {
         LoadKind::Biaxial => {
-            conditions.push(fixed("left", u, 0.0));
-            conditions.push(fixed("bottom", v, 0.0));
+            conditions.push(fixed("centre", u, 0.0));
+            conditions.push(fixed("centre", v, 0.0));
+            conditions.push(fixed("right_middle", v, 0.0));
             for edge in ["left", "right", "bottom", "top"] {
                 conditions.push(fixed(edge, w, 0.0));
             }
-            tractions.push(EdgeTraction {
-                edge: "right".into(),
-                fields: [u, v],
-                traction: [-1.0, 0.0],
-                proportional: true,
-            });
-            tractions.push(EdgeTraction {
-                edge: "top".into(),
-                fields: [u, v],
-                traction: [0.0, scene.load.tension_y],
-                proportional: false,
-            });
+            for (edge, traction, proportional) in [
+                ("left", [1.0, 0.0], true),
+                ("right", [-1.0, 0.0], true),
+                ("bottom", [0.0, -scene.load.tension_y], false),
+                ("top", [0.0, scene.load.tension_y], false),
+            ] {
+                tractions.push(EdgeTraction {
+                    edge: edge.into(),
+                    fields: [u, v],
+                    traction,
+                    proportional,
+                });
+            }
         }
         LoadKind::Strip => {
             for edge in ["left", "right"] {
@@ -141,12 +145,13 @@ pub fn build_problem<M: EnergyModel>(scene: &Scene, model: M, perturbation: f64)
     }
     // Any further field (rotations of a plate model, imaginary envelope, mean deflection) is
     // clamped like the envelope on every edge where the envelope is.
+    let envelope_edges: Vec<String> = conditions
+        .iter()
+        .filter(|c| c.field == w)
+        .map(|c| c.edge.clone())
+        .collect();
     for (k, _) in spec.fields.iter().enumerate().filter(|(k, _)| ![u, v, w].contains(k)) {
-        let edges: Vec<String> = conditions
-            .iter()
-            .filter(|c| c.field == w)
-            .map(|c| c.edge.clone())
-            .collect();
+        let edges = envelope_edges.clone();
         for edge in edges {
             conditions.push(fixed(&edge, k, 0.0));
         }

@@ -66,7 +66,13 @@ fn render_sample_plots() {
             let points = (0..=200)
                 .map(|i| {
                     let x = 2.0 * i as f64;
-                    (x, amplitude * (PI * x / 400.0).sin().powf(1.0 + 10.0 * (lambda - threshold)))
+                    (
+                        x,
+                        amplitude
+                            * (PI * x / 400.0)
+                                .sin()
+                                .powf(1.0 + 10.0 * (lambda - threshold)),
+                    )
                 })
                 .collect();
             Curve::line(format!("λ = {lambda:.2}"), points)

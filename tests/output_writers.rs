@@ -59,7 +59,12 @@ fn path_csv_header_is_the_field_names_and_rows_parse_back_exactly() {
     assert_eq!(header, PATH_CSV_COLUMNS);
     // The header is the list of serde field names, in declaration order.
     let json = serde_json::to_value(&points[1]).unwrap();
-    let keys: Vec<&str> = json.as_object().unwrap().keys().map(String::as_str).collect();
+    let keys: Vec<&str> = json
+        .as_object()
+        .unwrap()
+        .keys()
+        .map(String::as_str)
+        .collect();
     let mut sorted_header = header.clone();
     sorted_header.sort_unstable();
     let mut sorted_keys = keys.clone();
@@ -149,7 +154,11 @@ fn fields_vtu_of_a_q8_mesh_parses_back() {
     for &[x, y] in &mesh.nodes {
         nodal.extend([x + 2.0 * y, x * y]);
     }
-    let mode: Vec<f64> = mesh.nodes.iter().map(|&[x, _]| (x * PI / 3.0).sin()).collect();
+    let mode: Vec<f64> = mesh
+        .nodes
+        .iter()
+        .map(|&[x, _]| (x * PI / 3.0).sin())
+        .collect();
     write_fields_vtu(&file, &mesh, &["u", "v"], &nodal, &[("mode", mode.clone())]).unwrap();
 
     let text = std::fs::read_to_string(&file).unwrap();
@@ -197,14 +206,25 @@ fn fields_vtu_rejects_inconsistent_input() {
 
     let error = write_fields_vtu(&file, &mesh, &["u"], &values, &[]).unwrap_err();
     assert_eq!(error.kind(), io::ErrorKind::InvalidInput);
-    assert!(error.to_string().contains(&format!("expected {node_count}")), "{error}");
+    assert!(
+        error
+            .to_string()
+            .contains(&format!("expected {node_count}")),
+        "{error}"
+    );
 
     let error = write_fields_vtu(&file, &mesh, &["u", "u"], &values, &[]).unwrap_err();
     assert_eq!(error.kind(), io::ErrorKind::InvalidInput);
     assert!(error.to_string().contains("`u`"), "{error}");
 
-    let error =
-        write_fields_vtu(&file, &mesh, &["u", "v"], &values, &[("mode", vec![1.0; 3])]).unwrap_err();
+    let error = write_fields_vtu(
+        &file,
+        &mesh,
+        &["u", "v"],
+        &values,
+        &[("mode", vec![1.0; 3])],
+    )
+    .unwrap_err();
     assert!(error.to_string().contains("mode"), "{error}");
 
     let mut broken = mesh.clone();
@@ -219,12 +239,22 @@ fn surface_vtu_reconstructs_twice_the_envelope() {
     let dir = scratch_dir("surface-vtu");
     let file = dir.join("surface.vtu");
     let (length, width, amplitude) = (400.0, 200.0, 1.5);
-    let envelope = move |x: f64, y: f64| amplitude * (PI * x / length).sin() * (PI * y / width).sin();
+    let envelope =
+        move |x: f64, y: f64| amplitude * (PI * x / length).sin() * (PI * y / width).sin();
     // Eight wavelengths over the length: the centre (200, 100) is a crest of cos(Q X).
     let wavenumber = 2.0 * PI * 8.0 / length;
     let (nx, ny, scale) = (80, 40, 3.0);
-    write_surface_vtu(&file, [0.0, length, 0.0, width], nx, ny, &envelope, wavenumber, 0.0, scale)
-        .unwrap();
+    write_surface_vtu(
+        &file,
+        [0.0, length, 0.0, width],
+        nx,
+        ny,
+        &envelope,
+        wavenumber,
+        0.0,
+        scale,
+    )
+    .unwrap();
 
     let piece = read_piece(&file);
     let point_count = (nx + 1) * (ny + 1);
@@ -237,7 +267,10 @@ fn surface_vtu_reconstructs_twice_the_envelope() {
     let max_z = points.chunks(3).fold(0.0f64, |m, p| m.max(p[2].abs()));
     let max_envelope = env.iter().fold(0.0f64, |m, e| m.max(e.abs()));
     assert!((max_envelope - amplitude).abs() < 1e-12);
-    assert!((max_z - scale * 2.0 * amplitude).abs() < 1e-9, "max |z| = {max_z}");
+    assert!(
+        (max_z - scale * 2.0 * amplitude).abs() < 1e-9,
+        "max |z| = {max_z}"
+    );
     for (k, p) in points.chunks(3).enumerate() {
         let (x, y) = (p[0], p[1]);
         let expected = 2.0 * envelope(x, y) * (wavenumber * x).cos();
@@ -250,8 +283,17 @@ fn surface_vtu_reconstructs_twice_the_envelope() {
 
     // Waves along Y when the direction is π/2.
     let file = dir.join("surface-y.vtu");
-    write_surface_vtu(&file, [0.0, length, 0.0, width], 10, 20, &envelope, 0.3, PI / 2.0, 1.0)
-        .unwrap();
+    write_surface_vtu(
+        &file,
+        [0.0, length, 0.0, width],
+        10,
+        20,
+        &envelope,
+        0.3,
+        PI / 2.0,
+        1.0,
+    )
+    .unwrap();
     let piece = read_piece(&file);
     let points = piece.points.clone().cast_into::<f64>().unwrap();
     let w = point_array(&piece, "w");
@@ -266,13 +308,17 @@ fn surface_vtu_rejects_bad_grids_and_non_finite_envelopes() {
     let dir = scratch_dir("surface-vtu-errors");
     let file = dir.join("bad.vtu");
     let one = |_: f64, _: f64| 1.0;
-    for (bounds, nx) in [([0.0, 1.0, 0.0, 1.0], 0), ([1.0, 0.0, 0.0, 1.0], 4), ([0.0, f64::NAN, 0.0, 1.0], 4)] {
+    for (bounds, nx) in [
+        ([0.0, 1.0, 0.0, 1.0], 0),
+        ([1.0, 0.0, 0.0, 1.0], 4),
+        ([0.0, f64::NAN, 0.0, 1.0], 4),
+    ] {
         let error = write_surface_vtu(&file, bounds, nx, 4, &one, 1.0, 0.0, 1.0).unwrap_err();
         assert_eq!(error.kind(), io::ErrorKind::InvalidInput);
     }
     let singular = |x: f64, _: f64| 1.0 / (x - 0.5);
-    let error = write_surface_vtu(&file, [0.0, 1.0, 0.0, 1.0], 2, 2, &singular, 1.0, 0.0, 1.0)
-        .unwrap_err();
+    let error =
+        write_surface_vtu(&file, [0.0, 1.0, 0.0, 1.0], 2, 2, &singular, 1.0, 0.0, 1.0).unwrap_err();
     assert!(error.to_string().contains("envelope"), "{error}");
 }
 
@@ -312,11 +358,18 @@ fn response_plot_writes_png_and_svg_with_axis_labels() {
     assert_eq!(png_size(&dir.join("response.png")), (1200, 800));
     let svg = std::fs::read_to_string(dir.join("response.svg")).unwrap();
     assert!(svg.starts_with("<svg"));
-    for text in ["load λ", "w_env / h", "closed form", "bifurcation", "Response"] {
+    for text in [
+        "load λ",
+        "w_env / h",
+        "closed form",
+        "bifurcation",
+        "Response",
+    ] {
         assert!(svg.contains(text), "SVG lacks `{text}`");
     }
 
-    let error = plot_response(&stem, "t", &[Curve::line("empty", vec![])], "x", "y", &[]).unwrap_err();
+    let error =
+        plot_response(&stem, "t", &[Curve::line("empty", vec![])], "x", "y", &[]).unwrap_err();
     assert_eq!(error.kind(), io::ErrorKind::InvalidInput);
 }
 
@@ -326,7 +379,9 @@ fn profiles_plot_keeps_a_dot_in_the_stem() {
     let stem = dir.join("profile.at.center");
     let profiles: Vec<Curve> = (1..=3)
         .map(|k| {
-            let points = (0..=50).map(|i| (i as f64, k as f64 * (i as f64 / 8.0).sin())).collect();
+            let points = (0..=50)
+                .map(|i| (i as f64, k as f64 * (i as f64 / 8.0).sin()))
+                .collect();
             Curve::line(format!("λ = {k}"), points)
         })
         .collect();
@@ -352,7 +407,10 @@ fn map_plot_keeps_the_aspect_ratio_of_the_domain() {
         // Plot area plus fixed label areas: 310 px horizontally and 155 px vertically.
         let (plot_width, plot_height) = (width as f64 - 310.0, height as f64 - 155.0);
         let aspect = plot_width / plot_height;
-        assert!((aspect - length / 200.0).abs() < 0.02 * length / 200.0, "{width} × {height}");
+        assert!(
+            (aspect - length / 200.0).abs() < 0.02 * length / 200.0,
+            "{width} × {height}"
+        );
         let svg = std::fs::read_to_string(dir.join(format!("{name}.svg"))).unwrap();
         assert!(svg.contains("X (mm)") && svg.contains("Y (mm)"));
         // The cells are one embedded PNG image, not one element per cell.

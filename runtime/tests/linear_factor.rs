@@ -86,7 +86,10 @@ fn cholesky_solves_random_spd_matrices_like_dense_lu() {
         let matrix = dominant_matrix(&pattern, &mut rng, 0.5, |_| false);
         let mut factorization = SparseFactorization::analyze(&pattern).unwrap();
         assert_eq!(factorization.kind(), None);
-        assert_eq!(factorization.factorize(&matrix).unwrap(), FactorizationKind::Cholesky);
+        assert_eq!(
+            factorization.factorize(&matrix).unwrap(),
+            FactorizationKind::Cholesky
+        );
         assert_eq!(factorization.kind(), Some(FactorizationKind::Cholesky));
         assert_eq!(factorization.negative_pivots(), Some(0));
         assert!(factorization.factor_nnz() >= n);
@@ -99,10 +102,22 @@ fn cholesky_solves_random_spd_matrices_like_dense_lu() {
 fn indefinite_matrices_use_ldlt_with_correct_inertia() {
     let mut rng = StdRng::seed_from_u64(12);
     for (n, threshold) in [
-        (50, faer::sparse::linalg::SupernodalThreshold::FORCE_SIMPLICIAL),
-        (120, faer::sparse::linalg::SupernodalThreshold::FORCE_SIMPLICIAL),
-        (120, faer::sparse::linalg::SupernodalThreshold::FORCE_SUPERNODAL),
-        (300, faer::sparse::linalg::SupernodalThreshold::FORCE_SUPERNODAL),
+        (
+            50,
+            faer::sparse::linalg::SupernodalThreshold::FORCE_SIMPLICIAL,
+        ),
+        (
+            120,
+            faer::sparse::linalg::SupernodalThreshold::FORCE_SIMPLICIAL,
+        ),
+        (
+            120,
+            faer::sparse::linalg::SupernodalThreshold::FORCE_SUPERNODAL,
+        ),
+        (
+            300,
+            faer::sparse::linalg::SupernodalThreshold::FORCE_SUPERNODAL,
+        ),
     ] {
         let pattern = random_pattern(n, 4, &mut rng);
         // Strong diagonal dominance with mixed signs: pivots stay far from zero without pivoting.
@@ -171,12 +186,19 @@ fn zero_diagonal_saddle_blocks_fall_back_to_lu() {
         matrix.add_to(2 * block, 2 * block + 1, a).unwrap();
         if block + 1 < blocks {
             let coupling = 0.1 * rng.random_range(-1.0..1.0);
-            matrix.add_to(2 * block + 2, 2 * block + 1, coupling).unwrap();
-            matrix.add_to(2 * block + 1, 2 * block + 2, coupling).unwrap();
+            matrix
+                .add_to(2 * block + 2, 2 * block + 1, coupling)
+                .unwrap();
+            matrix
+                .add_to(2 * block + 1, 2 * block + 2, coupling)
+                .unwrap();
         }
     }
     let mut factorization = SparseFactorization::analyze(&pattern).unwrap();
-    assert_eq!(factorization.factorize(&matrix).unwrap(), FactorizationKind::Lu);
+    assert_eq!(
+        factorization.factorize(&matrix).unwrap(),
+        FactorizationKind::Lu
+    );
     assert_eq!(factorization.negative_pivots(), None);
     let rhs = random_vector(n, &mut rng);
     assert_solution_matches_dense(&factorization, &matrix, &rhs);
@@ -258,9 +280,12 @@ fn zero_column_is_reported_as_singular_at_that_dof() {
         other => panic!("expected a singular error, got {other:?}"),
     }
     assert!(
-        LinearError::Singular { column: dead, pivot: 0.0 }
-            .to_string()
-            .contains("dof (column) 7")
+        LinearError::Singular {
+            column: dead,
+            pivot: 0.0
+        }
+        .to_string()
+        .contains("dof (column) 7")
     );
 }
 
@@ -271,7 +296,12 @@ fn free_floating_chain_is_singular() {
     let pattern = chain_pattern(n);
     let mut matrix = SparseMatrix::zeros(pattern.clone());
     for i in 1..n {
-        for (row, column, value) in [(i, i, 1.0), (i - 1, i - 1, 1.0), (i, i - 1, -1.0), (i - 1, i, -1.0)] {
+        for (row, column, value) in [
+            (i, i, 1.0),
+            (i - 1, i - 1, 1.0),
+            (i, i - 1, -1.0),
+            (i - 1, i, -1.0),
+        ] {
             matrix.add_to(row, column, value).unwrap();
         }
     }
@@ -306,7 +336,11 @@ fn bad_inputs_give_errors() {
     let mut short = vec![1.0; 3];
     assert!(matches!(
         factorization.solve_in_place(&mut short),
-        Err(LinearError::DimensionMismatch { expected: 4, found: 3, .. })
+        Err(LinearError::DimensionMismatch {
+            expected: 4,
+            found: 3,
+            ..
+        })
     ));
     let mut infinite = vec![1.0, f64::INFINITY, 0.0, 0.0];
     assert!(matches!(
@@ -343,7 +377,10 @@ fn large_grid_laplacian_factorises_and_solves_quickly() {
     }
     let start = std::time::Instant::now();
     let mut factorization = SparseFactorization::analyze(&pattern).unwrap();
-    assert_eq!(factorization.factorize(&matrix).unwrap(), FactorizationKind::Cholesky);
+    assert_eq!(
+        factorization.factorize(&matrix).unwrap(),
+        FactorizationKind::Cholesky
+    );
     let mut rng = StdRng::seed_from_u64(16);
     let rhs = random_vector(n, &mut rng);
     let mut solution = rhs.clone();

@@ -14,7 +14,9 @@ use wrinkle_runtime::problem::Problem;
 use wrinkle_runtime::solve::SolveError;
 use wrinkle_runtime::solve::path::{PathControl, PathEvent, PathState, PathStop};
 use wrinkle_runtime::solve::riks::{ArcLengthConstraint, RiksOptions, follow_path_riks};
-use wrinkle_runtime::{Derivative, EnergyModel, JetEntry, ModelSpec, QuadratureRule, Scalar, TermSpec};
+use wrinkle_runtime::{
+    Derivative, EnergyModel, JetEntry, ModelSpec, QuadratureRule, Scalar, TermSpec,
+};
 
 /// One field `u`, one term depending on $`\partial u/\partial X`$.
 static TERMS: [TermSpec; 1] = [TermSpec {
@@ -118,10 +120,11 @@ fn assert_on_exact_path(
     positions: &[f64],
     state: &PathState,
 ) -> f64 {
-    let (index, x_max) = positions
-        .iter()
-        .enumerate()
-        .fold((0, 0.0), |best, (i, &x)| if x > best.1 { (i, x) } else { best });
+    let (index, x_max) =
+        positions.iter().enumerate().fold(
+            (0, 0.0),
+            |best, (i, &x)| if x > best.1 { (i, x) } else { best },
+        );
     let strain = state.displacement[index] / x_max;
     for (u, x) in state.displacement.iter().zip(positions) {
         assert!(
@@ -143,7 +146,10 @@ fn assert_on_exact_path(
 fn run(
     problem: &Problem<NonlinearSpring>,
     options: &RiksOptions,
-) -> (wrinkle_runtime::solve::path::PathResult, Vec<(usize, PathState)>) {
+) -> (
+    wrinkle_runtime::solve::path::PathResult,
+    Vec<(usize, PathState)>,
+) {
     let mut factor = SparseFactorization::analyze(problem.assembler.pattern()).unwrap();
     let start = PathState {
         displacement: vec![0.0; problem.free_count()],
@@ -167,7 +173,10 @@ fn hardening_spring_path_is_exact_for_both_constraints() {
         b: 0.0,
         c: 1.5,
     };
-    for constraint in [ArcLengthConstraint::Spherical, ArcLengthConstraint::Linearized] {
+    for constraint in [
+        ArcLengthConstraint::Spherical,
+        ArcLengthConstraint::Linearized,
+    ] {
         let problem = strip_problem(model.clone(), 4);
         let positions = free_positions(&problem);
         let options = RiksOptions {
@@ -178,7 +187,11 @@ fn hardening_spring_path_is_exact_for_both_constraints() {
             ..RiksOptions::default()
         };
         let (result, points) = run(&problem, &options);
-        assert!(matches!(result.stop, PathStop::MaxLoad), "{}", result.stop.describe());
+        assert!(
+            matches!(result.stop, PathStop::MaxLoad),
+            "{}",
+            result.stop.describe()
+        );
         assert_eq!(points[0].0, 0);
         assert_eq!(points[0].1.load, 0.0);
         assert_eq!(points.len(), result.statistics.steps + 1);
@@ -186,7 +199,10 @@ fn hardening_spring_path_is_exact_for_both_constraints() {
         for (index, (step, state)) in points.iter().enumerate() {
             assert_eq!(*step, index);
             let strain = assert_on_exact_path(&problem, &positions, state);
-            assert!(strain > previous_strain, "strain must grow along a hardening path");
+            assert!(
+                strain > previous_strain,
+                "strain must grow along a hardening path"
+            );
             previous_strain = strain;
         }
         // Each accepted point lies on the arc-length sphere around the previous one
@@ -218,7 +234,10 @@ fn step_lengths_satisfy_the_arc_length_equation() {
     let load_scale = 0.7;
     // Fixed arc length (min = initial = max) so every step must have exactly this length.
     let arc = 0.3;
-    for constraint in [ArcLengthConstraint::Spherical, ArcLengthConstraint::Linearized] {
+    for constraint in [
+        ArcLengthConstraint::Spherical,
+        ArcLengthConstraint::Linearized,
+    ] {
         let options = RiksOptions {
             initial_arc_length: arc,
             min_arc_length: arc,
@@ -229,7 +248,11 @@ fn step_lengths_satisfy_the_arc_length_equation() {
             ..RiksOptions::default()
         };
         let (result, points) = run(&problem, &options);
-        assert!(matches!(result.stop, PathStop::MaxSteps), "{}", result.stop.describe());
+        assert!(
+            matches!(result.stop, PathStop::MaxSteps),
+            "{}",
+            result.stop.describe()
+        );
         assert_eq!(points.len(), 7);
         for pair in points.windows(2) {
             let (a, b) = (&pair[0].1, &pair[1].1);
@@ -263,7 +286,10 @@ fn snap_through_passes_both_limit_points() {
     let strain_at_minimum = (6.0 + 6.0_f64.sqrt()) / 15.0;
     let load_maximum = model.stress(strain_at_maximum);
     let load_minimum = model.stress(strain_at_minimum);
-    for constraint in [ArcLengthConstraint::Spherical, ArcLengthConstraint::Linearized] {
+    for constraint in [
+        ArcLengthConstraint::Spherical,
+        ArcLengthConstraint::Linearized,
+    ] {
         let problem = strip_problem(model.clone(), 3);
         let positions = free_positions(&problem);
         let options = RiksOptions {
@@ -274,12 +300,11 @@ fn snap_through_passes_both_limit_points() {
             ..RiksOptions::default()
         };
         let (result, points) = run(&problem, &options);
-        if std::env::var("RIKS_DEBUG").is_ok() {
-            for (step, state) in &points {
-                eprintln!("{step} {} {}", state.load, state.displacement[0]);
-            }
-        }
-        assert!(matches!(result.stop, PathStop::MaxLoad), "{}", result.stop.describe());
+        assert!(
+            matches!(result.stop, PathStop::MaxLoad),
+            "{}",
+            result.stop.describe()
+        );
         let strains: Vec<f64> = points
             .iter()
             .map(|(_, state)| assert_on_exact_path(&problem, &positions, state))
@@ -294,7 +319,9 @@ fn snap_through_passes_both_limit_points() {
         assert!(*signs.last().unwrap());
         // Points on the unstable (softening) branch were found, below the maximum.
         let softening: Vec<usize> = (0..strains.len())
-            .filter(|&i| strains[i] > strain_at_maximum + 0.02 && strains[i] < strain_at_minimum - 0.02)
+            .filter(|&i| {
+                strains[i] > strain_at_maximum + 0.02 && strains[i] < strain_at_minimum - 0.02
+            })
             .collect();
         assert!(!softening.is_empty());
         for &i in &softening {
@@ -429,7 +456,13 @@ fn observer_stops_the_path() {
             PathControl::Continue
         }
     };
-    let result = follow_path_riks(&problem, start, &mut factor, &RiksOptions::default(), &mut observer);
+    let result = follow_path_riks(
+        &problem,
+        start,
+        &mut factor,
+        &RiksOptions::default(),
+        &mut observer,
+    );
     assert!(matches!(result.stop, PathStop::Observer));
     assert_eq!(steps, vec![0, 1, 2, 3]);
     assert_eq!(result.statistics.steps, 3);
@@ -456,7 +489,11 @@ fn oversized_steps_are_halved_and_the_path_stays_exact() {
         ..RiksOptions::default()
     };
     let (result, points) = run(&problem, &options);
-    assert!(matches!(result.stop, PathStop::MaxSteps), "{}", result.stop.describe());
+    assert!(
+        matches!(result.stop, PathStop::MaxSteps),
+        "{}",
+        result.stop.describe()
+    );
     assert!(result.statistics.rejected_steps > 0);
     for (_, state) in &points {
         assert_on_exact_path(&problem, &positions, state);
@@ -493,7 +530,11 @@ fn displacement_control_uses_the_load_derivative_of_prescribed_values() {
         ..RiksOptions::default()
     };
     let (result, points) = run(&problem, &options);
-    assert!(matches!(result.stop, PathStop::MaxLoad), "{}", result.stop.describe());
+    assert!(
+        matches!(result.stop, PathStop::MaxLoad),
+        "{}",
+        result.stop.describe()
+    );
     assert!(points.len() > 3);
     for (_, state) in &points {
         for (u, x) in state.displacement.iter().zip(&positions) {

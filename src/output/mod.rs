@@ -10,11 +10,11 @@
 //! [`std::io::ErrorKind::InvalidInput`] whose inner error is an [`OutputError`], so callers can
 //! either print it as one line or downcast it.
 //!
-//! * [`path_table`]: [`PathPoint`] and [`write_path_csv`].
-//! * [`vtu`]: [`write_fields_vtu`] (Q8 mesh, VTK cell type 23) and [`write_surface_vtu`]
+//! * [`path_table`] — [`PathPoint`] and [`write_path_csv`].
+//! * [`vtu`] — [`write_fields_vtu`] (Q8 mesh, VTK cell type 23) and [`write_surface_vtu`]
 //!   (structured Quad4 grid with $`z = w(X, Y)`$).
-//! * [`plots`]: [`plot_response`], [`plot_profiles`], [`plot_map`].
-//! * [`progress`]: [`Progress`].
+//! * [`plots`] — [`plot_response`], [`plot_profiles`], [`plot_map`].
+//! * [`progress`] — [`Progress`].
 
 pub mod path_table;
 pub mod plots;
@@ -96,7 +96,11 @@ pub(crate) fn invalid(what: impl Into<String>, message: impl Into<String>) -> io
 
 /// Shorthand for an [`OutputError::LengthMismatch`] as an [`io::Error`], or `Ok` when the lengths
 /// agree.
-pub(crate) fn check_length(what: impl Into<String>, expected: usize, actual: usize) -> io::Result<()> {
+pub(crate) fn check_length(
+    what: impl Into<String>,
+    expected: usize,
+    actual: usize,
+) -> io::Result<()> {
     if expected == actual {
         Ok(())
     } else {

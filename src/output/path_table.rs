@@ -102,9 +102,22 @@ mod tests {
 
     #[test]
     fn numbers_round_trip_exactly() {
-        for value in [0.0, -0.0, 0.09, 1.0 / 3.0, 1e-300, -2.5e12, 123456.789, f64::MIN_POSITIVE] {
+        for value in [
+            0.0,
+            -0.0,
+            0.09,
+            1.0 / 3.0,
+            1e-300,
+            -2.5e12,
+            123456.789,
+            f64::MIN_POSITIVE,
+        ] {
             let text = format_number(value);
-            assert_eq!(text.parse::<f64>().unwrap().to_bits(), value.to_bits(), "{text}");
+            assert_eq!(
+                text.parse::<f64>().unwrap().to_bits(),
+                value.to_bits(),
+                "{text}"
+            );
         }
         assert_eq!(format_number(0.09), "0.09");
         assert_eq!(format_number(1e-9), "1e-9");

@@ -103,7 +103,14 @@ pub fn plot_response(
     y_label: &str,
     markers: &[VerticalMarker],
 ) -> io::Result<()> {
-    let figure = CurveFigure::new(title, curves, x_label, y_label, markers, Palette::Categorical)?;
+    let figure = CurveFigure::new(
+        title,
+        curves,
+        x_label,
+        y_label,
+        markers,
+        Palette::Categorical,
+    )?;
     render(stem, (1200, 800), &figure)
 }
 
@@ -112,7 +119,12 @@ pub fn plot_response(
 /// colour map in the order given, so pass them by increasing load.
 ///
 /// Errors: as [`plot_response`].
-pub fn plot_profiles(stem: &Path, title: &str, x_label: &str, profiles: &[Curve]) -> io::Result<()> {
+pub fn plot_profiles(
+    stem: &Path,
+    title: &str,
+    x_label: &str,
+    profiles: &[Curve],
+) -> io::Result<()> {
     let figure = CurveFigure::new(title, profiles, x_label, "", &[], Palette::Sequential)?;
     render(stem, (1200, 700), &figure)
 }
@@ -154,7 +166,9 @@ pub fn grid_cell_centres(bounds: [f64; 4], nx: usize, ny: usize) -> Vec<(f64, f6
     let [x0, x1, y0, y1] = bounds;
     let (dx, dy) = ((x1 - x0) / nx as f64, (y1 - y0) / ny as f64);
     (0..ny)
-        .flat_map(|j| (0..nx).map(move |i| (x0 + (i as f64 + 0.5) * dx, y0 + (j as f64 + 0.5) * dy)))
+        .flat_map(|j| {
+            (0..nx).map(move |i| (x0 + (i as f64 + 0.5) * dx, y0 + (j as f64 + 0.5) * dy))
+        })
         .collect()
 }
 
@@ -186,13 +200,15 @@ fn plotting_error(path: &Path, error: impl std::fmt::Display) -> io::Error {
 
 fn register_bundled_font() -> io::Result<()> {
     static REGISTERED: OnceLock<bool> = OnceLock::new();
-    let registered = *REGISTERED.get_or_init(|| {
-        register_font(FONT, FontStyle::Normal, FONT_BYTES).is_ok()
-    });
+    let registered =
+        *REGISTERED.get_or_init(|| register_font(FONT, FontStyle::Normal, FONT_BYTES).is_ok());
     if registered {
         Ok(())
     } else {
-        Err(invalid("bundled font", "DejaVuSans.ttf could not be parsed"))
+        Err(invalid(
+            "bundled font",
+            "DejaVuSans.ttf could not be parsed",
+        ))
     }
 }
 
@@ -201,14 +217,20 @@ fn render(stem: &Path, size: (u32, u32), figure: &impl Figure) -> io::Result<()>
     let png = with_suffix(stem, "png");
     {
         let root = BitMapBackend::new(&png, size).into_drawing_area();
-        figure.draw(&root).map_err(|error| plotting_error(&png, error))?;
-        root.present().map_err(|error| plotting_error(&png, error))?;
+        figure
+            .draw(&root)
+            .map_err(|error| plotting_error(&png, error))?;
+        root.present()
+            .map_err(|error| plotting_error(&png, error))?;
     }
     let svg = with_suffix(stem, "svg");
     {
         let root = plotters_svg::SVGBackend::new(&svg, size).into_drawing_area();
-        figure.draw(&root).map_err(|error| plotting_error(&svg, error))?;
-        root.present().map_err(|error| plotting_error(&svg, error))?;
+        figure
+            .draw(&root)
+            .map_err(|error| plotting_error(&svg, error))?;
+        root.present()
+            .map_err(|error| plotting_error(&svg, error))?;
     }
     fix_embedded_image_type(&svg)
 }
@@ -336,8 +358,12 @@ impl<'a> CurveFigure<'a> {
             };
             curve.points.iter().chain(extra).filter(|p| finite(p))
         });
-        let (mut x_min, mut x_max, mut y_min, mut y_max) =
-            (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+        let (mut x_min, mut x_max, mut y_min, mut y_max) = (
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        );
         for &(x, y) in all_points {
             x_min = x_min.min(x);
             x_max = x_max.max(x);
@@ -365,7 +391,11 @@ impl<'a> CurveFigure<'a> {
 
     /// The legend corner covering the fewest samples of the curves and marker labels, in plot
     /// coordinates normalised to $`[0, 1]^2`$ (y upwards).
-    fn legend_position(&self, occupied: &[(f64, f64)], legend_size: (f64, f64)) -> SeriesLabelPosition {
+    fn legend_position(
+        &self,
+        occupied: &[(f64, f64)],
+        legend_size: (f64, f64),
+    ) -> SeriesLabelPosition {
         let (width, height) = (legend_size.0 + 0.03, legend_size.1 + 0.03);
         let candidates = [
             (SeriesLabelPosition::UpperLeft, (0.0, 1.0 - height)),
@@ -377,7 +407,9 @@ impl<'a> CurveFigure<'a> {
         for (position, (left, bottom)) in candidates {
             let covered = occupied
                 .iter()
-                .filter(|&&(u, v)| u >= left && u <= left + width && v >= bottom && v <= bottom + height)
+                .filter(|&&(u, v)| {
+                    u >= left && u <= left + width && v >= bottom && v <= bottom + height
+                })
                 .count();
             if covered < best.0 {
                 best = (covered, position);
@@ -432,7 +464,10 @@ impl Figure for CurveFigure<'_> {
             .margin_right(35)
             .x_label_area_size(70)
             .y_label_area_size(if self.y_label.is_empty() { 80 } else { 105 })
-            .build_cartesian_2d(self.x_range.0..self.x_range.1, self.y_range.0..self.y_range.1)?;
+            .build_cartesian_2d(
+                self.x_range.0..self.x_range.1,
+                self.y_range.0..self.y_range.1,
+            )?;
         let tick_style = (FONT, TICK_LABEL_SIZE).into_font();
         let description_style = (FONT, AXIS_DESCRIPTION_SIZE).into_font();
         chart
@@ -467,8 +502,7 @@ impl Figure for CurveFigure<'_> {
                 6,
                 RGBColor(90, 90, 90).stroke_width(2),
             )))?;
-            let (text_width, text_height) =
-                root.estimate_text_size(&marker.label, &label_style)?;
+            let (text_width, text_height) = root.estimate_text_size(&marker.label, &label_style)?;
             let line_pixel = ((marker.x - self.x_range.0) / (self.x_range.1 - self.x_range.0)
                 * plot_width)
                 .round() as i32;
@@ -481,11 +515,18 @@ impl Figure for CurveFigure<'_> {
             plot_area.draw(&Rectangle::new(
                 [
                     (left - 3, top_pixel - 2),
-                    (left + text_width as i32 + 3, top_pixel + text_height as i32 + 3),
+                    (
+                        left + text_width as i32 + 3,
+                        top_pixel + text_height as i32 + 3,
+                    ),
                 ],
                 WHITE.mix(0.85).filled(),
             ))?;
-            plot_area.draw(&Text::new(marker.label.clone(), (left, top_pixel), &label_style))?;
+            plot_area.draw(&Text::new(
+                marker.label.clone(),
+                (left, top_pixel),
+                &label_style,
+            ))?;
             // Mark the label box as occupied for the legend placement.
             for i in 0..=10 {
                 for j in 0..=4 {
@@ -506,13 +547,13 @@ impl Figure for CurveFigure<'_> {
                 CurveStyle::Line | CurveStyle::LineWithMarkers(_) => {
                     let mut annotation = None;
                     for run in &segments {
-                        annotation = Some(chart.draw_series(LineSeries::new(run.clone(), line_style))?);
+                        annotation =
+                            Some(chart.draw_series(LineSeries::new(run.clone(), line_style))?);
                     }
                     if let CurveStyle::LineWithMarkers(marks) = &curve.style {
                         let marks = marks.iter().filter(|p| finite(p));
-                        annotation = Some(chart.draw_series(
-                            marks.map(|&p| marker_element(p, color)),
-                        )?);
+                        annotation =
+                            Some(chart.draw_series(marks.map(|&p| marker_element(p, color)))?);
                     }
                     annotation
                 }
@@ -528,13 +569,15 @@ impl Figure for CurveFigure<'_> {
                     }
                     annotation
                 }
-                CurveStyle::Points => Some(chart.draw_series(
-                    curve
-                        .points
-                        .iter()
-                        .filter(|p| finite(p))
-                        .map(|&p| marker_element(p, color)),
-                )?),
+                CurveStyle::Points => Some(
+                    chart.draw_series(
+                        curve
+                            .points
+                            .iter()
+                            .filter(|p| finite(p))
+                            .map(|&p| marker_element(p, color)),
+                    )?,
+                ),
             };
             if curve.label.is_empty() {
                 continue;
@@ -543,9 +586,9 @@ impl Figure for CurveFigure<'_> {
                 continue;
             };
             let style = curve.style.clone();
-            annotation.label(curve.label.clone()).legend(move |(x, y)| {
-                legend_glyph::<DB>(&style, (x, y), color)
-            });
+            annotation
+                .label(curve.label.clone())
+                .legend(move |(x, y)| legend_glyph::<DB>(&style, (x, y), color));
         }
 
         let labelled: Vec<&Curve> = self.curves.iter().filter(|c| !c.label.is_empty()).collect();
@@ -696,7 +739,11 @@ fn diverging_color(t: f64) -> RGBColor {
         return RGBColor(150, 150, 150);
     }
     let t = t.clamp(-1.0, 1.0);
-    let (cold, middle, warm) = ((59.0, 76.0, 192.0), (242.0, 242.0, 242.0), (180.0, 4.0, 38.0));
+    let (cold, middle, warm) = (
+        (59.0, 76.0, 192.0),
+        (242.0, 242.0, 242.0),
+        (180.0, 4.0, 38.0),
+    );
     let (from, to, s) = if t < 0.0 {
         (middle, cold, -t)
     } else {
@@ -820,17 +867,25 @@ fn format_coordinate(value: f64) -> String {
     }
     let text = format!("{:.6}", value);
     let text = text.trim_end_matches('0').trim_end_matches('.');
-    if text == "-0" { "0".to_string() } else { text.to_string() }
+    if text == "-0" {
+        "0".to_string()
+    } else {
+        text.to_string()
+    }
 }
 
 /// Tick text with as many decimals as the scale needs.
 fn format_tick(value: f64, scale: f64) -> String {
-    if scale >= 1e5 || scale < 1e-3 {
+    if !(1e-3..1e5).contains(&scale) {
         return format!("{value:.2e}");
     }
     let decimals = (2.0 - scale.log10().floor()).clamp(0.0, 6.0) as usize;
     let text = format!("{value:.decimals$}");
-    if text.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') {
+    if text
+        .trim_start_matches('-')
+        .chars()
+        .all(|c| c == '0' || c == '.')
+    {
         "0".to_string()
     } else {
         text

@@ -34,7 +34,12 @@ pub fn write_fields_vtu(
     let node_count = mesh.nodes.len();
     let field_count = field_names.len();
     check_length("nodal values", node_count * field_count, nodal_values.len())?;
-    check_unique_names(field_names.iter().copied().chain(extra.iter().map(|(name, _)| *name)))?;
+    check_unique_names(
+        field_names
+            .iter()
+            .copied()
+            .chain(extra.iter().map(|(name, _)| *name)),
+    )?;
     for (name, values) in extra {
         check_length(format!("point array `{name}`"), node_count, values.len())?;
     }
@@ -97,6 +102,8 @@ pub fn write_fields_vtu(
 ///
 /// Errors (kind [`io::ErrorKind::InvalidInput`]): `nx` or `ny` zero, bounds not finite and
 /// increasing, non-finite wavenumber, direction or scale, an envelope value that is not finite.
+// The signature is the documented interface of `wrinkle run`; the scalars are independent inputs.
+#[allow(clippy::too_many_arguments)]
 pub fn write_surface_vtu(
     path: &Path,
     bounds: [f64; 4],
@@ -216,9 +223,10 @@ fn write_piece(path: &Path, title: &str, piece: UnstructuredGridPiece) -> io::Re
     };
     let file = File::create(path).map_err(|error| with_path(path, error))?;
     let mut writer = BufWriter::new(file);
-    vtk.write_xml(&mut writer).map_err(|error| OutputError::Library {
-        library: "vtkio",
-        message: format!("{}: {error}", path.display()),
-    })?;
+    vtk.write_xml(&mut writer)
+        .map_err(|error| OutputError::Library {
+            library: "vtkio",
+            message: format!("{}: {error}", path.display()),
+        })?;
     writer.flush().map_err(|error| with_path(path, error))
 }

@@ -177,12 +177,20 @@ impl KernelWriter<'_> {
         match operation {
             Operation::Leaf => unreachable!("leaves are referenced inline"),
             Operation::Add(a, b) => {
-                let (a, b) = if !scalar(a) && scalar(b) { (b, a) } else { (a, b) };
+                let (a, b) = if !scalar(a) && scalar(b) {
+                    (b, a)
+                } else {
+                    (a, b)
+                };
                 let (a, b) = (r(a), r(b));
                 quote!(#a + #b)
             }
             Operation::Multiply(a, b) => {
-                let (a, b) = if !scalar(a) && scalar(b) { (b, a) } else { (a, b) };
+                let (a, b) = if !scalar(a) && scalar(b) {
+                    (b, a)
+                } else {
+                    (a, b)
+                };
                 if a == b && scalar(a) {
                     let a = r(a);
                     return quote!(#a * #a);
@@ -361,7 +369,8 @@ pub fn generate(compiled: &CompiledModel) -> TokenStream {
         tangent_arms.push(quote!(#index => #tangent,));
     }
     let escaped_name = registry_name.replace('{', "{{").replace('}', "}}");
-    let missing_term = format!("model `{escaped_name}` has {term_count} energy terms; term {{}} does not exist");
+    let missing_term =
+        format!("model `{escaped_name}` has {term_count} energy terms; term {{}} does not exist");
     let wrong_parameter_count = format!(
         "model `{escaped_name}` takes {parameter_count} parameters ({}), got {{}}",
         parameter_names.join(", ")

@@ -210,8 +210,8 @@ impl ExpressionGraph {
     pub fn add(&mut self, a: NodeId, b: NodeId) -> NodeId {
         match (self.constant_value(a), self.constant_value(b)) {
             (Some(x), Some(y)) => self.constant(x + y),
-            (Some(x), None) if x == 0.0 => b,
-            (None, Some(y)) if y == 0.0 => a,
+            (Some(0.0), None) => b,
+            (None, Some(0.0)) => a,
             _ => self.intern(Node::Add(a.min(b), a.max(b))),
         }
     }
@@ -221,8 +221,8 @@ impl ExpressionGraph {
         match (self.constant_value(a), self.constant_value(b)) {
             (Some(x), Some(y)) => self.constant(x * y),
             (Some(x), _) | (_, Some(x)) if x == 0.0 => self.constant(0.0),
-            (Some(x), None) if x == 1.0 => b,
-            (None, Some(y)) if y == 1.0 => a,
+            (Some(1.0), None) => b,
+            (None, Some(1.0)) => a,
             _ => self.intern(Node::Multiply(a.min(b), a.max(b))),
         }
     }

@@ -92,8 +92,11 @@ pub fn compile(
         };
         let (mut graph, statistics, mut mapped) = match simplified {
             Some(result) => {
-                let map: HashMap<NodeId, NodeId> =
-                    live.iter().copied().zip(result.roots.iter().copied()).collect();
+                let map: HashMap<NodeId, NodeId> = live
+                    .iter()
+                    .copied()
+                    .zip(result.roots.iter().copied())
+                    .collect();
                 (result.graph, result.statistics, map)
             }
             None => (

@@ -276,7 +276,12 @@ pub fn lower_model(declaration: &ModelDeclaration) -> Result<LoweredModel, syn::
         declare(&mut scope, field, Binding::Field(index), &mut errors);
     }
     for (index, parameter) in declaration.parameters.iter().enumerate() {
-        declare(&mut scope, &parameter.name, Binding::Parameter(index), &mut errors);
+        declare(
+            &mut scope,
+            &parameter.name,
+            Binding::Parameter(index),
+            &mut errors,
+        );
     }
 
     let mut declared_later = HashMap::new();

@@ -8,8 +8,8 @@ use std::str::FromStr;
 use std::time::Duration;
 
 use egg::{
-    Analysis, CostFunction, DidMerge, EGraph, Extractor, Id, Language, Rewrite, Runner,
-    StopReason, Subst, Symbol, define_language, rewrite,
+    Analysis, CostFunction, DidMerge, EGraph, Extractor, Id, Language, Rewrite, Runner, StopReason,
+    Subst, Symbol, define_language, rewrite,
 };
 use thiserror::Error;
 
@@ -101,7 +101,10 @@ impl Analysis<Symbolic> for ConstantFolding {
         let value = |id: &Id| egraph[*id].data.constant.map(|real| real.0);
         let scalar = match enode {
             Symbolic::Symbol(symbol) => symbol.as_str().starts_with('j'),
-            _ => enode.children().iter().any(|child| egraph[*child].data.scalar),
+            _ => enode
+                .children()
+                .iter()
+                .any(|child| egraph[*child].data.scalar),
         };
         let constant = (|| match enode {
             Symbolic::Constant(c) => Some(*c),
@@ -159,7 +162,9 @@ impl Analysis<Symbolic> for ConstantFolding {
 
 type SymbolicRewrite = Rewrite<Symbolic, ConstantFolding>;
 
-fn is_positive_integer(variable: &str) -> impl Fn(&mut EGraph<Symbolic, ConstantFolding>, Id, &Subst) -> bool {
+fn is_positive_integer(
+    variable: &str,
+) -> impl Fn(&mut EGraph<Symbolic, ConstantFolding>, Id, &Subst) -> bool {
     let variable = variable.parse().expect("valid pattern variable");
     move |egraph, _, subst| {
         egraph[subst[variable]]

@@ -255,8 +255,8 @@ impl Parse for ModelDeclaration {
         let mut documentation = Vec::new();
         let mut other_attributes = Vec::new();
         for attribute in attributes {
-            if attribute.path().is_ident("doc") {
-                if let syn::Meta::NameValue(syn::MetaNameValue {
+            if attribute.path().is_ident("doc")
+                && let syn::Meta::NameValue(syn::MetaNameValue {
                     value:
                         syn::Expr::Lit(syn::ExprLit {
                             lit: syn::Lit::Str(text),
@@ -264,11 +264,10 @@ impl Parse for ModelDeclaration {
                         }),
                     ..
                 }) = &attribute.meta
-                {
-                    let line = text.value();
-                    documentation.push(line.strip_prefix(' ').unwrap_or(&line).to_string());
-                    continue;
-                }
+            {
+                let line = text.value();
+                documentation.push(line.strip_prefix(' ').unwrap_or(&line).to_string());
+                continue;
             }
             other_attributes.push(attribute);
         }
@@ -516,7 +515,7 @@ fn integer_exponent(expression: &Expression) -> Result<i64, String> {
         }
         Expression::Parenthesized { inner, .. } => integer_exponent(inner),
         _ => Err(
-            "exponent must be an integer literal (e.g. `x^2`); symbolic exponents are not supported"
+            "exponent must be an integer literal (e.g. `x^2` or `x^-1`); names and expressions are not allowed as exponents"
                 .to_string(),
         ),
     }

@@ -5,8 +5,7 @@
 use proc_macro2::TokenStream;
 use quote::quote;
 use wrinkle_energy::{
-    CompiledModel, Derivative, SimplificationLimits, StopKind, TermKernel, analyze,
-    parse_and_lower,
+    CompiledModel, Derivative, SimplificationLimits, StopKind, TermKernel, analyze, parse_and_lower,
 };
 
 /// A tiny deterministic generator (64-bit LCG, top 53 bits) for reproducible points.
@@ -57,8 +56,15 @@ fn random_jet(random: &mut Lcg, length: usize) -> Vec<f64> {
     (0..length).map(|_| random.uniform(-0.8, 0.8)).collect()
 }
 
-fn evaluate(term: &TermKernel, root: wrinkle_energy::NodeId, parameters: &[f64], jet: &[f64]) -> f64 {
-    term.graph.evaluate(root, parameters, jet).expect("evaluates")
+fn evaluate(
+    term: &TermKernel,
+    root: wrinkle_energy::NodeId,
+    parameters: &[f64],
+    jet: &[f64],
+) -> f64 {
+    term.graph
+        .evaluate(root, parameters, jet)
+        .expect("evaluates")
 }
 
 fn evaluate_reference(
@@ -128,7 +134,10 @@ fn simplification_preserves_values_and_zeros_are_structural() {
             let p = &ENVELOPE_PARAMETERS;
             let energy = evaluate(term, term.energy, p, &jet);
             let truth = evaluate_reference(term, term.reference.energy, p, &jet);
-            assert!(relative_error(energy, truth, 1e-300) < 1e-12, "{energy} vs {truth}");
+            assert!(
+                relative_error(energy, truth, 1e-300) < 1e-12,
+                "{energy} vs {truth}"
+            );
             for (index, &root) in term.residual.iter().enumerate() {
                 let value = evaluate(term, root, p, &jet);
                 let truth = evaluate_reference(term, term.reference.residual[index], p, &jet);
@@ -140,7 +149,11 @@ fn simplification_preserves_values_and_zeros_are_structural() {
             }
             for &((i, j), root) in &term.reference.tangent {
                 let reference_value = evaluate_reference(term, root, p, &jet);
-                match term.tangent_pattern.iter().position(|&entry| entry == (i, j)) {
+                match term
+                    .tangent_pattern
+                    .iter()
+                    .position(|&entry| entry == (i, j))
+                {
                     Some(position) => {
                         let value = evaluate(term, term.tangent[position], p, &jet);
                         assert!(
@@ -194,7 +207,9 @@ fn residual_and_tangent_match_finite_differences() {
                         .tangent_pattern
                         .iter()
                         .position(|&entry| entry == (i, j))
-                        .map_or(0.0, |position| evaluate(term, term.tangent[position], p, &jet));
+                        .map_or(0.0, |position| {
+                            evaluate(term, term.tangent[position], p, &jet)
+                        });
                     let difference = central_difference(&jet, term.jet[j], |x| {
                         evaluate(term, term.residual[i], p, x)
                     });
@@ -266,7 +281,10 @@ fn report_states_why_the_egraph_stopped() {
     assert_eq!(model.report.lines().count(), 2);
     for (line, term) in model.report.lines().zip(&model.terms) {
         assert!(line.starts_with(&format!("term `{}`", term.name)), "{line}");
-        assert!(line.contains(&format!("stopped: {}", term.statistics.stop)), "{line}");
+        assert!(
+            line.contains(&format!("stopped: {}", term.statistics.stop)),
+            "{line}"
+        );
         assert!(line.contains(&format!("e-graph {} nodes", term.statistics.nodes)));
     }
     let tight = SimplificationLimits {
@@ -279,13 +297,21 @@ fn report_states_why_the_egraph_stopped() {
         "{}",
         limited.report
     );
-    assert!(limited.report.contains("stopped: node limit (e-graph reached"));
+    assert!(
+        limited
+            .report
+            .contains("stopped: node limit (e-graph reached")
+    );
     let one_iteration = SimplificationLimits {
         iteration_limit: 1,
         ..SimplificationLimits::default()
     };
     let limited = analyze(reference_envelope(), &one_iteration).unwrap();
-    assert!(limited.report.contains("stopped: iteration limit (1 iterations)"));
+    assert!(
+        limited
+            .report
+            .contains("stopped: iteration limit (1 iterations)")
+    );
     let small = compiled(quote! {
         /// Linear spring.
         model Spring as "spring" { fields: w; energy spring = w^2; }
@@ -317,7 +343,10 @@ fn large_polynomial_energies_stay_within_limits_and_generate_valid_rust() {
         assert!(statistics.iterations <= limits.iteration_limit);
         // egg checks the node limit between rule applications, so allow one iteration of overshoot.
         assert!(statistics.nodes <= 4 * limits.node_limit, "{statistics:?}");
-        assert!(!matches!(statistics.stop, StopKind::TimeLimit(_)), "{statistics:?}");
+        assert!(
+            !matches!(statistics.stop, StopKind::TimeLimit(_)),
+            "{statistics:?}"
+        );
         assert!(
             statistics.operations_after <= statistics.operations_before,
             "{statistics:?}"
@@ -382,7 +411,8 @@ fn model_level_errors_are_reported() {
     let no_term = error_messages(quote! { model Empty as "empty" { fields: w; } });
     assert_eq!(no_term.len(), 1);
     assert!(no_term[0].contains("declares no `energy` term"));
-    let unused = error_messages(quote! { model Unused as "unused" { fields: u, w; energy e = w^2; } });
+    let unused =
+        error_messages(quote! { model Unused as "unused" { fields: u, w; energy e = w^2; } });
     assert_eq!(unused, ["field `u` is used by no energy term"]);
     let constant = error_messages(quote! {
         model Constant as "constant" { fields: w; parameters: k; energy e = w^2; energy f = k * 2; }
@@ -411,5 +441,8 @@ fn power_binds_tighter_than_unary_minus_and_is_right_associative() {
     let (w, wx) = (0.7, -0.4);
     let value = evaluate(term, term.energy, &[], &[w, wx]);
     let truth = -w * w + 2.0 * w.powi(4) - 3.0 * wx;
-    assert!(relative_error(value, truth, 1e-300) < 1e-14, "{value} vs {truth}");
+    assert!(
+        relative_error(value, truth, 1e-300) < 1e-14,
+        "{value} vs {truth}"
+    );
 }

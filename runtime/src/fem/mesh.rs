@@ -12,6 +12,8 @@ pub struct Mesh {
     pub elements: Vec<[usize; QUAD8_NODES]>,
     /// Named boundary edges, each a list of 3-node segments `[end, end, middle]`.
     pub edges: BTreeMap<String, Vec<[usize; 3]>>,
+    /// Named node sets that are not edges (single points used to remove rigid-body motions).
+    pub points: BTreeMap<String, Vec<usize>>,
 }
 
 /// Errors building a mesh.
@@ -135,11 +137,24 @@ impl Mesh {
                 .map(|e| [at(gx - 1, 2 * e), at(gx - 1, 2 * e + 2), at(gx - 1, 2 * e + 1)])
                 .collect(),
         );
-        Ok(Mesh {
+        let mut mesh = Mesh {
             nodes,
             elements,
             edges,
-        })
+            points: BTreeMap::new(),
+        };
+        // Points for minimal in-plane supports: the centre, and the middle of each edge.
+        for (name, point) in [
+            ("centre", [0.5 * lx, 0.5 * ly]),
+            ("left_middle", [0.0, 0.5 * ly]),
+            ("right_middle", [lx, 0.5 * ly]),
+            ("bottom_middle", [0.5 * lx, 0.0]),
+            ("top_middle", [0.5 * lx, ly]),
+        ] {
+            let node = mesh.nearest_node(point);
+            mesh.points.insert(name.to_string(), vec![node]);
+        }
+        Ok(mesh)
     }
 
     /// Node coordinates of element `e` in element order.
@@ -151,8 +166,11 @@ impl Mesh {
         c
     }
 
-    /// Sorted, de-duplicated nodes of a named edge (`None` if there is no such edge).
+    /// Sorted, de-duplicated nodes of a named edge or point set (`None` if there is no such set).
     pub fn edge_nodes(&self, name: &str) -> Option<Vec<usize>> {
+        if let Some(points) = self.points.get(name) {
+            return Some(points.clone());
+        }
         let segments = self.edges.get(name)?;
         let mut nodes: Vec<usize> = segments.iter().flat_map(|s| s.iter().copied()).collect();
         nodes.sort_unstable();
@@ -160,9 +178,9 @@ impl Mesh {
         Some(nodes)
     }
 
-    /// Names of the edge sets.
+    /// Names of the edge and point sets.
     pub fn edge_names(&self) -> Vec<&str> {
-        self.edges.keys().map(String::as_str).collect()
+        self.edges.keys().chain(self.points.keys()).map(String::as_str).collect()
     }
 
     /// The node nearest to a point.

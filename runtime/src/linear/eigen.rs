@@ -54,7 +54,7 @@ impl Default for BucklingOptions {
             max_krylov: 40,
             max_restarts: 300,
             accept_unconverged: false,
-            seed: 0x5eed_0f_b0c1,
+            seed: 0x5eed_0fb0_c1a5,
         }
     }
 }
@@ -201,8 +201,8 @@ impl Basis {
         self.orthogonalize(&mut x);
         let mut ax = operator.apply_a(&x)?;
         let a_norm_squared = dot(&x, &ax);
-        if !(a_norm_squared > 0.0)
-            || !a_norm_squared.is_finite()
+        if !a_norm_squared.is_finite()
+            || a_norm_squared <= 0.0
             || a_norm_squared.sqrt() <= BREAKDOWN_RELATIVE * reference_norm
         {
             return Ok(false);
@@ -435,7 +435,9 @@ pub fn smallest_positive_buckling(
             }
         }
         let ritz = rayleigh_ritz(&basis, n, options.modes);
-        let spectral_scale = ritz.iter().fold(0.0_f64, |max, pair| max.max(pair.value.abs()));
+        let spectral_scale = ritz
+            .iter()
+            .fold(0.0_f64, |max, pair| max.max(pair.value.abs()));
         let noise = NEGATIVE_NOISE_RELATIVE * spectral_scale;
         let wanted: Vec<&RitzPair> = ritz
             .iter()
@@ -551,10 +553,13 @@ fn finish_mode(
         .collect();
     let residual = norm(&residual_vector) / norm(&av);
     let mut scale = 1.0 / a_norm_squared.sqrt();
-    let largest = vector
-        .iter()
-        .copied()
-        .fold(0.0_f64, |best, value| if value.abs() > best.abs() { value } else { best });
+    let largest = vector.iter().copied().fold(0.0_f64, |best, value| {
+        if value.abs() > best.abs() {
+            value
+        } else {
+            best
+        }
+    });
     if largest < 0.0 {
         scale = -scale;
     }

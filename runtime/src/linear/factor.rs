@@ -375,11 +375,7 @@ impl SparseFactorization {
         Some(negative)
     }
 
-    fn factorize_lu(
-        &mut self,
-        values: &[f64],
-        column_scale: &[f64],
-    ) -> Result<(), LinearError> {
+    fn factorize_lu(&mut self, values: &[f64], column_scale: &[f64]) -> Result<(), LinearError> {
         let n = self.dimension;
         let structure =
             SymbolicSparseColMatRef::new_checked(n, n, &self.col_ptr, None, &self.row_idx);
@@ -402,12 +398,11 @@ impl SparseFactorization {
         let Some(lu) = self.lu.as_mut() else {
             return Err(LinearError::NotFactorized);
         };
-        let mut buffer =
-            MemBuffer::try_new(simplicial::factorize_simplicial_numeric_lu_scratch::<
-                usize,
-                f64,
-            >(n, n))
-            .map_err(backend)?;
+        let mut buffer = MemBuffer::try_new(simplicial::factorize_simplicial_numeric_lu_scratch::<
+            usize,
+            f64,
+        >(n, n))
+        .map_err(backend)?;
         let col_perm = PermRef::new_checked(&lu.col_perm_fwd, &lu.col_perm_inv, n);
         let result = simplicial::factorize_simplicial_numeric_lu(
             &mut lu.row_perm_fwd,
@@ -437,7 +432,8 @@ impl SparseFactorization {
                 .find(|(row, _)| **row == step)
                 .map_or(0.0, |(_, value)| *value);
             let column = lu.col_perm_fwd[step];
-            if !pivot.is_finite() || pivot.abs() <= LU_SINGULAR_PIVOT_RELATIVE * column_scale[column]
+            if !pivot.is_finite()
+                || pivot.abs() <= LU_SINGULAR_PIVOT_RELATIVE * column_scale[column]
             {
                 return Err(LinearError::Singular { column, pivot });
             }
@@ -534,10 +530,9 @@ impl SparseFactorization {
                 let Some(lu) = self.lu.as_ref() else {
                     return Err(LinearError::NotFactorized);
                 };
-                let mut buffer = MemBuffer::try_new(simplicial::solve_in_place_scratch::<
-                    usize,
-                    f64,
-                >(n, 1, Par::Seq))
+                let mut buffer = MemBuffer::try_new(
+                    simplicial::solve_in_place_scratch::<usize, f64>(n, 1, Par::Seq),
+                )
                 .map_err(backend)?;
                 lu.numeric.solve_in_place_with_conj(
                     PermRef::new_checked(&lu.row_perm_fwd, &lu.row_perm_inv, n),

@@ -272,8 +272,7 @@ impl SparseMatrix {
         SparseColMat::new(self.pattern.to_faer_symbolic(), self.values.clone())
     }
 
-    /// Dense copy (row-major nested vectors are avoided: an nalgebra matrix), for tests and
-    /// small problems.
+    /// Dense nalgebra copy, for tests and small problems.
     pub fn to_dense(&self) -> nalgebra::DMatrix<f64> {
         let n = self.dimension();
         let mut dense = nalgebra::DMatrix::zeros(n, n);
@@ -314,10 +313,7 @@ mod tests {
         assert_eq!(pattern.dimension(), 5);
         // Column 0: {0, 2}; 1: {1, 2, 3}; 2: {0, 1, 2, 3}; 3: {1, 2, 3}; 4: {4}.
         assert_eq!(pattern.col_ptr(), &[0, 2, 5, 9, 12, 13]);
-        assert_eq!(
-            pattern.row_idx(),
-            &[0, 2, 1, 2, 3, 0, 1, 2, 3, 1, 2, 3, 4]
-        );
+        assert_eq!(pattern.row_idx(), &[0, 2, 1, 2, 3, 0, 1, 2, 3, 1, 2, 3, 4]);
         assert_eq!(pattern.nnz(), 13);
         assert_eq!(pattern.slot(3, 2), Some(8));
         assert_eq!(pattern.slot(0, 3), None);
@@ -325,7 +321,17 @@ mod tests {
         let slots = pattern.element_slots(&elements[0]);
         assert_eq!(
             slots,
-            vec![Some(0), Some(5), None, Some(1), Some(7), None, None, None, None]
+            vec![
+                Some(0),
+                Some(5),
+                None,
+                Some(1),
+                Some(7),
+                None,
+                None,
+                None,
+                None
+            ]
         );
     }
 
@@ -344,11 +350,16 @@ mod tests {
 
     #[test]
     fn multiply_matches_dense_product() {
-        let pattern = Arc::new(
-            SparsityPattern::from_symmetric_entries(4, [(1, 0), (3, 1), (2, 2)]).unwrap(),
-        );
+        let pattern =
+            Arc::new(SparsityPattern::from_symmetric_entries(4, [(1, 0), (3, 1), (2, 2)]).unwrap());
         let mut matrix = SparseMatrix::zeros(pattern);
-        let entries = [(0, 0, 4.0), (1, 0, -1.5), (0, 1, 2.0), (1, 1, 3.0), (3, 1, 0.5)];
+        let entries = [
+            (0, 0, 4.0),
+            (1, 0, -1.5),
+            (0, 1, 2.0),
+            (1, 1, 3.0),
+            (3, 1, 0.5),
+        ];
         for (row, column, value) in entries {
             matrix.add_to(row, column, value).unwrap();
         }

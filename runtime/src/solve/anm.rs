@@ -14,6 +14,12 @@
 //! Step length $`a_{\max} = (\epsilon\|U_1\|/\|U_N\|)^{1/(N-1)}`$ or, optionally, the Padé
 //! approximants' longer range. The residual is checked at the end of every step; a Newton
 //! correction brings it back under the tolerance when needed (or the step is halved).
+//!
+//! Bifurcations: at every step start the solver predicts the nearest bifurcation load by linear
+//! buckling about the current point along the path tangent (one shift-invert eigen-solve with
+//! the step's factorised tangent). Predictions are trusted while two successive ones agree to
+//! [`PREDICTION_AGREEMENT`] (the path is still on its fundamental branch); a bifurcation is
+//! reported, with the last trusted prediction as its load, at the step whose end passes it.
 
 use super::error::SolveError;
 use super::newton::{NewtonOptions, newton};
@@ -25,6 +31,9 @@ use crate::model::EnergyModel;
 use crate::problem::Problem;
 use crate::series::{MAX_SERIES_LEN, PadeApproximant, PathSeries, Series, geometric_ratio, series_step_length};
 use std::time::Instant;
+
+/// Relative agreement of two successive bifurcation predictions for the later one to be trusted.
+pub const PREDICTION_AGREEMENT: f64 = 1e-5;
 
 /// Settings of [`follow_path_anm`].
 #[derive(Clone, Debug)]
@@ -188,6 +197,10 @@ pub fn follow_path_anm<M: EnergyModel>(
     let mut state = start;
     let mut bifurcation = None;
     let mut previous: Option<(Vec<f64>, f64)> = None;
+    // Bifurcation predictions are trusted while successive ones agree (the path is still on its
+    // fundamental branch, where linear buckling about the current point is accurate).
+    let mut last_prediction: Option<f64> = None;
+    let mut trusted_prediction: Option<f64> = None;
     let finish = |state: PathState, mut statistics: PathStatistics, stop: PathStop, bifurcation| {
         statistics.total_seconds = begin.elapsed().as_secs_f64();
         PathResult {
@@ -349,8 +362,13 @@ pub fn follow_path_anm<M: EnergyModel>(
             }
         }
         if let Some(p) = predicted {
-            if bifurcation.is_none() && state.load < p && end.load >= p {
-                bifurcation = Some((p, step));
+            if last_prediction.is_some_and(|q| (p - q).abs() <= PREDICTION_AGREEMENT * p.abs()) {
+                trusted_prediction = Some(p);
+            }
+            last_prediction = Some(p);
+            let detected = trusted_prediction.unwrap_or(p);
+            if bifurcation.is_none() && end.load >= detected {
+                bifurcation = Some((detected, step));
             }
         }
         steps_log.push(AnmStep {

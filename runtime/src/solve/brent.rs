@@ -92,10 +92,7 @@ pub fn minimize_scalar<E>(
             q = q.abs();
             let previous = e;
             e = d;
-            if p.abs() < (0.5 * q * previous).abs()
-                && p > q * (lower - x)
-                && p < q * (upper - x)
-            {
+            if p.abs() < (0.5 * q * previous).abs() && p > q * (lower - x) && p < q * (upper - x) {
                 d = p / q;
                 let u = x + d;
                 if u - lower < tolerance2 || upper - u < tolerance2 {
@@ -154,9 +151,14 @@ mod tests {
 
     #[test]
     fn quadratic_minimum_found_to_tolerance() {
-        let result =
-            minimize_scalar(|x| Ok::<_, ()>((x - 2.0) * (x - 2.0) + 1.0), 0.0, 5.0, 1e-10, 200)
-                .unwrap();
+        let result = minimize_scalar(
+            |x| Ok::<_, ()>((x - 2.0) * (x - 2.0) + 1.0),
+            0.0,
+            5.0,
+            1e-10,
+            200,
+        )
+        .unwrap();
         assert!(result.converged);
         assert!((result.argument - 2.0).abs() < 1e-9, "{result:?}");
         assert!((result.value - 1.0).abs() < 1e-15);
@@ -169,14 +171,17 @@ mod tests {
         let result = minimize_scalar(|x: f64| Ok::<_, ()>(x.cos()), 2.0, 4.0, 1e-12, 200).unwrap();
         assert!(result.converged);
         // cos is flat at π: |x − π| ≈ √(2 ε) from values alone; the bracket gives ≤ 1e-8 here.
-        assert!((result.argument - std::f64::consts::PI).abs() < 1e-7, "{result:?}");
+        assert!(
+            (result.argument - std::f64::consts::PI).abs() < 1e-7,
+            "{result:?}"
+        );
         assert!((result.value + 1.0).abs() < 1e-15);
     }
 
     #[test]
     fn reversed_bounds_and_boundary_minimum() {
         // Minimum of x on [1, 3] (given reversed) is at the boundary 1.
-        let result = minimize_scalar(|x| Ok::<_, ()>(x), 3.0, 1.0, 1e-8, 200).unwrap();
+        let result = minimize_scalar(Ok::<_, ()>, 3.0, 1.0, 1e-8, 200).unwrap();
         assert!(result.converged);
         assert!((result.argument - 1.0).abs() < 1e-7, "{result:?}");
     }
@@ -208,7 +213,7 @@ mod tests {
             minimize_scalar(|x: f64| Ok::<_, ()>((x - 0.3).abs()), 0.0, 1.0, 1e-14, 6).unwrap();
         assert!(!result.converged);
         assert_eq!(result.evaluations, 6);
-        let invalid = minimize_scalar(|x| Ok::<_, ()>(x), f64::NAN, 1.0, 1e-8, 10).unwrap();
+        let invalid = minimize_scalar(Ok::<_, ()>, f64::NAN, 1.0, 1e-8, 10).unwrap();
         assert!(!invalid.converged);
         assert_eq!(invalid.evaluations, 0);
     }

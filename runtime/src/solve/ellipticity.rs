@@ -1,5 +1,9 @@
 //! Legendre–Hadamard (strong ellipticity) check of a model's energy density, for any model.
 //!
+//! The margin reported is the smallest $`LDL^T`$ pivot of $`A(\mathbf{n})`$ over sampled
+//! directions, relative to its largest diagonal entry: positive iff $`A(\mathbf{n})`$ is positive
+//! definite (cheap enough to run at every point of a path).
+//!
 //! With $`H_{(i,a)(j,b)} = \partial^2\psi/\partial(\partial_a f_i)\,\partial(\partial_b f_j)`$ the
 //! block of the generated tangent that couples field gradients (summed over all terms), the
 //! acoustic tensor in direction $`\mathbf{n}`$ is $`A_{ij}(\mathbf{n}) = H_{(i,a)(j,b)}\,n_a n_b`$.
@@ -17,15 +21,45 @@ use crate::problem::Problem;
 pub struct EllipticityReport {
     /// Whether $`A(\mathbf{n})`$ is positive definite at every checked point and direction.
     pub elliptic: bool,
-    /// Smallest eigenvalue of $`A(\mathbf{n})`$ over points and directions, divided by the
-    /// largest eigenvalue magnitude at the same point (negative = violated).
+    /// Smallest $`LDL^T`$ pivot of $`A(\mathbf{n})`$ over points and directions, divided by the
+    /// largest diagonal entry at the same point (negative = violated).
     pub worst_margin: f64,
     /// Where the worst margin occurs.
     pub location: [f64; 2],
     /// Direction $`\mathbf{n}`$ (angle from X, radians) of the worst margin.
     pub direction: f64,
-    /// Field with the largest component in the worst eigenvector.
+    /// Field whose pivot is the smallest at the worst point.
     pub field: &'static str,
+}
+
+/// Most fields with gradients the check handles.
+const MAX_GRADIENT_FIELDS: usize = 8;
+
+/// Smallest LDLᵀ pivot of the leading `m × m` block (destroyed) and its index.
+fn smallest_pivot(a: &mut [[f64; MAX_GRADIENT_FIELDS]; MAX_GRADIENT_FIELDS], m: usize) -> (f64, usize) {
+    let mut smallest = (f64::INFINITY, 0);
+    for k in 0..m {
+        let d = a[k][k];
+        if d < smallest.0 {
+            smallest = (d, k);
+        }
+        if d <= 0.0 {
+            // Not positive definite: the remaining pivots are meaningless.
+            return smallest;
+        }
+        for i in (k + 1)..m {
+            let l = a[i][k] / d;
+            for j in (k + 1)..=i {
+                a[i][j] -= l * a[j][k];
+            }
+        }
+        for i in (k + 1)..m {
+            for j in (k + 1)..i {
+                a[j][i] = a[i][j];
+            }
+        }
+    }
+    smallest
 }
 
 /// Number of directions sampled on the half circle.
@@ -109,33 +143,28 @@ pub fn legendre_hadamard<M: EnergyModel>(
             for k in 0..DIRECTIONS {
                 let angle = std::f64::consts::PI * k as f64 / DIRECTIONS as f64;
                 let n = [angle.cos(), angle.sin()];
-                let acoustic = nalgebra::DMatrix::from_fn(m, m, |i, j| {
-                    let mut s = 0.0;
-                    for a in 0..2 {
-                        for b in 0..2 {
-                            s += h[(2 * i + a) * 2 * m + (2 * j + b)] * n[a] * n[b];
+                // A(n) on the stack, then its LDLᵀ pivots (positive definite ⇔ all pivots > 0).
+                let mut acoustic = [[0.0; MAX_GRADIENT_FIELDS]; MAX_GRADIENT_FIELDS];
+                let mut scale: f64 = 0.0;
+                for i in 0..m {
+                    for j in 0..m {
+                        let mut sum = 0.0;
+                        for a in 0..2 {
+                            for b in 0..2 {
+                                sum += h[(2 * i + a) * 2 * m + (2 * j + b)] * n[a] * n[b];
+                            }
                         }
+                        acoustic[i][j] = sum;
                     }
-                    s
-                });
-                let eigen = nalgebra::SymmetricEigen::new(acoustic);
-                let (imin, &min) = eigen
-                    .eigenvalues
-                    .iter()
-                    .enumerate()
-                    .min_by(|a, b| a.1.total_cmp(b.1))
-                    .expect("at least one gradient field");
-                let scale = eigen.eigenvalues.iter().fold(0.0f64, |s, v| s.max(v.abs()));
-                let margin = if scale > 0.0 { min / scale } else { 0.0 };
+                    scale = scale.max(acoustic[i][i].abs());
+                }
+                let (pivot, at) = smallest_pivot(&mut acoustic, m);
+                let margin = if scale > 0.0 { pivot / scale } else { 0.0 };
                 if margin < report.worst_margin {
-                    let vector = eigen.eigenvectors.column(imin);
-                    let dominant = (0..m)
-                        .max_by(|&a, &b| vector[a].abs().total_cmp(&vector[b].abs()))
-                        .expect("non-empty");
                     report.worst_margin = margin;
                     report.location = values.points[q];
                     report.direction = angle;
-                    report.field = spec.fields[gradient_fields[dominant]];
+                    report.field = spec.fields[gradient_fields[at]];
                 }
             }
         }

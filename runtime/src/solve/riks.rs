@@ -341,7 +341,7 @@ fn trace<M: EnergyModel>(
             .factorize(&current.displacement, current.load)
             .and_then(|()| linearization.load_tangent(&current.displacement, current.load));
         let (mut direction, mut load_direction) = match (tangent, &previous) {
-            (Ok(displacement_tangent), _) => {
+            (Ok(mut displacement_tangent), _) => {
                 let sign = match &previous {
                     Some((increment, load_increment)) => {
                         let alignment = arc_dot(
@@ -355,6 +355,9 @@ fn trace<M: EnergyModel>(
                     }
                     None => 1.0,
                 };
+                for value in displacement_tangent.iter_mut() {
+                    *value *= sign;
+                }
                 (displacement_tangent, sign)
             }
             // No tangent at this point: continue along the previous increment (secant).
@@ -428,7 +431,8 @@ fn trace<M: EnergyModel>(
         previous = Some((increment, load_increment));
         current = corrected.state;
         linearization.statistics.steps += 1;
-        let factor = (options.desired_iterations as f64 / corrected.iterations.max(1) as f64).sqrt();
+        let factor =
+            (options.desired_iterations as f64 / corrected.iterations.max(1) as f64).sqrt();
         arc_length = (arc_length * factor).clamp(options.min_arc_length, options.max_arc_length);
 
         let event = PathEvent {
@@ -521,7 +525,8 @@ fn correct<M: EnergyModel>(
                     load_scale,
                 ) - arc_length * arc_length;
                 let numerator = -0.5 * mismatch - dot(&increment, &residual_correction);
-                let denominator = dot(&increment, &load_correction_direction) + weight * load_increment;
+                let denominator =
+                    dot(&increment, &load_correction_direction) + weight * load_increment;
                 let correction = numerator / denominator;
                 if !correction.is_finite() {
                     return Err(StepFailure::Constraint {
@@ -613,11 +618,7 @@ fn spherical_root(
     }
     // Numerically stable pair of roots.
     let q = -0.5 * (b + b.signum() * discriminant.sqrt());
-    let roots = if q == 0.0 {
-        [0.0, 0.0]
-    } else {
-        [q / a, c / q]
-    };
+    let roots = if q == 0.0 { [0.0, 0.0] } else { [q / a, c / q] };
     let alignment = |root: f64| {
         let moved: f64 = increment
             .iter()

@@ -1,0 +1,120 @@
+//! The ANM's series machinery checked against finite-difference Taylor coefficients.
+//!
+//! Source: THEORY.md §10 and ARCHITECTURE.md §4. Model: reference envelope (§4), example 1's
+//! material (E 70000, ν 0.3, h 0.05), a 3 × 2 mesh of 400 × 200, Q = 0.235.
+//! 1. Along a known quadratic curve $`U(a) = U_0 + aU_1 + a^2U_2`$, $`\lambda(a)`$ likewise, the
+//!    residual $`g(a) = R(U(a),\lambda(a))`$ is a polynomial of degree 6 (the residual is cubic in
+//!    $`U`$). Its coefficients from the generated kernels run on truncated series must equal those
+//!    of a least-squares polynomial fit to `f64` residuals at 13 Chebyshev points (relative 1e-8).
+//! 2. The series of an ANM step satisfies $`R(U(a),\lambda(a)) = O(a^{N+1})`$: halving $`a`$
+//!    divides the residual by $`\approx 2^{N+1}`$ (N = 5: 64).
+
+use rand::rngs::StdRng;
+use rand::{Rng, SeedableRng};
+use wrinkle::scene::Scene;
+use wrinkle::setup::{build_problem, configure_model};
+use wrinkle_models::ReferenceEnvelope;
+use wrinkle_runtime::EnergyModel;
+use wrinkle_runtime::linear::factor::SparseFactorization;
+use wrinkle_runtime::problem::{Problem, norm};
+use wrinkle_runtime::series::Series;
+use wrinkle_runtime::solve::anm::compute_series;
+use wrinkle_runtime::solve::newton::{NewtonOptions, newton};
+use wrinkle_runtime::solve::path::PathState;
+
+fn problem(perturbation: f64) -> Problem<ReferenceEnvelope> {
+    let mut scene = Scene::default();
+    for s in ["mesh.nx=3", "mesh.ny=2", "model.wavenumber=0.235"] {
+        scene.apply_override(s).unwrap();
+    }
+    let mut model = ReferenceEnvelope::from_parameters(&[0.0; 5]);
+    configure_model(&scene, &mut model, 0.235).unwrap();
+    build_problem(&scene, model, perturbation).unwrap()
+}
+
+/// Least-squares polynomial coefficients (degree `degree`) of samples on [-1, 1].
+fn polynomial_fit(a: &[f64], values: &[f64], degree: usize) -> Vec<f64> {
+    let m = nalgebra::DMatrix::from_fn(a.len(), degree + 1, |i, j| a[i].powi(j as i32));
+    let b = nalgebra::DVector::from_column_slice(values);
+    let svd = m.svd(true, true);
+    svd.solve(&b, 1e-14).unwrap().iter().copied().collect()
+}
+
+#[test]
+fn series_residual_matches_taylor_coefficients_along_a_quadratic_curve() {
+    let problem = problem(0.0);
+    let n = problem.free_count();
+    let mut rng = StdRng::seed_from_u64(42);
+    // Realistic sizes: displacements ~1e-2 mm, envelope ~h.
+    let mut vector = |scale: f64| -> Vec<f64> { (0..n).map(|_| scale * rng.random_range(-1.0..1.0)).collect() };
+    let curve = [vector(0.05), vector(0.03), vector(0.02)];
+    let load = [0.05, 0.02, -0.01];
+    // Series evaluation: coefficients 0..=6 of g.
+    let len = 7;
+    let free: Vec<Series> = (0..n)
+        .map(|i| {
+            let mut s = Series::zeros(len);
+            for k in 0..3 {
+                s.coefficients_mut()[k] = curve[k][i];
+            }
+            s
+        })
+        .collect();
+    let mut load_series = Series::zeros(len);
+    load_series.coefficients_mut()[..3].copy_from_slice(&load);
+    let series_residual = problem.residual(&free, load_series);
+    // f64 residuals at Chebyshev points, fitted.
+    let points: Vec<f64> = (0..13).map(|j| ((2 * j + 1) as f64 * std::f64::consts::PI / 26.0).cos()).collect();
+    let samples: Vec<Vec<f64>> = points
+        .iter()
+        .map(|&a| {
+            let u: Vec<f64> = (0..n).map(|i| curve[0][i] + a * curve[1][i] + a * a * curve[2][i]).collect();
+            problem.residual(&u, load[0] + a * load[1] + a * a * load[2])
+        })
+        .collect();
+    let mut worst: f64 = 0.0;
+    for k in 0..len {
+        let series_k: Vec<f64> = series_residual.iter().map(|s| s.coefficient(k)).collect();
+        let fitted_k: Vec<f64> = (0..n)
+            .map(|i| {
+                let values: Vec<f64> = samples.iter().map(|r| r[i]).collect();
+                polynomial_fit(&points, &values, 8)[k]
+            })
+            .collect();
+        let scale = norm(&series_residual.iter().map(|s| s.coefficient(0)).collect::<Vec<_>>());
+        let diff: Vec<f64> = series_k.iter().zip(&fitted_k).map(|(a, b)| a - b).collect();
+        worst = worst.max(norm(&diff) / scale);
+    }
+    eprintln!("worst relative difference of Taylor coefficients: {worst:e}");
+    assert!(worst < 1e-8, "series residual vs fitted Taylor coefficients: {worst:e}");
+}
+
+#[test]
+fn anm_series_residual_is_of_order_n_plus_one() {
+    let problem = problem(2e-9);
+    let n = problem.free_count();
+    let mut factor = SparseFactorization::analyze(problem.assembler.pattern()).unwrap();
+    let mut matrix = problem.new_matrix();
+    let load = 0.08;
+    let equilibrium = newton(&problem, vec![0.0; n], load, &mut factor, &mut matrix, &NewtonOptions::default()).unwrap();
+    let state = PathState {
+        displacement: equilibrium.solution,
+        load,
+    };
+    problem.tangent_into(&state.displacement, load, &mut matrix);
+    factor.factorize(&matrix).unwrap();
+    let order = 5;
+    let (series, _) = compute_series(&problem, &state, &factor, order, None).unwrap();
+    // Find a with residual well above round-off, then halve it.
+    let residual_at = |a: f64| {
+        let (u, l) = series.evaluate(a);
+        norm(&problem.residual(&u, l))
+    };
+    let mut a = 1e-2;
+    while residual_at(a) > 1e-6 * problem.residual_scale(load) {
+        a *= 0.5;
+    }
+    let ratio = residual_at(a) / residual_at(0.5 * a);
+    eprintln!("a = {a:e}, residual ratio on halving = {ratio}");
+    assert!((40.0..100.0).contains(&ratio), "expected ≈ 2^(N+1) = 64, got {ratio}");
+}
