@@ -263,7 +263,6 @@ impl ModelVisitor for RunVisitor<'_> {
                 follow_path_riks(&problem, start, &mut factor, &options, &mut observer)
             }
         };
-        drop(observer);
         progress.finish(&format!("{} ({} steps)", result.stop.describe(), result.statistics.steps));
 
         // ---- outputs ----

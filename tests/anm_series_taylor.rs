@@ -54,8 +54,8 @@ fn series_residual_matches_taylor_coefficients_along_a_quadratic_curve() {
     let free: Vec<Series> = (0..n)
         .map(|i| {
             let mut s = Series::zeros(len);
-            for k in 0..3 {
-                s.coefficients_mut()[k] = curve[k][i];
+            for (coefficient, vector) in s.coefficients_mut().iter_mut().zip(&curve) {
+                *coefficient = vector[i];
             }
             s
         })

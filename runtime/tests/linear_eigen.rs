@@ -224,7 +224,7 @@ fn indefinite_load_stiffness_matches_dense_reference() {
     let n = 150;
     let a = grid_laplacian(n, 1);
     let b = negative_diagonal(&a, |k| {
-        (2.0 * PI * (k as f64 + 0.5) / n as f64).cos() * -1.0 + 0.2
+        -(2.0 * PI * (k as f64 + 0.5) / n as f64).cos() + 0.2
     });
     let factor = factorize(&a);
     let options = BucklingOptions {

@@ -167,7 +167,7 @@ impl ElementValues {
                 }
             }
             let det = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
-            if !(det > 0.0) {
+            if det.is_nan() || det <= 0.0 {
                 return Err(JacobianError {
                     element,
                     determinant: det,

@@ -133,11 +133,11 @@ mod tests {
         )
         .unwrap();
         let fx: f64 = (0..dofs.free_count)
-            .filter(|&i| dofs.global_of_free(i) % 2 == 0)
+            .filter(|&i| dofs.global_of_free(i).is_multiple_of(2))
             .map(|i| loads.proportional[i])
             .sum();
         let fy: f64 = (0..dofs.free_count)
-            .filter(|&i| dofs.global_of_free(i) % 2 == 1)
+            .filter(|&i| !dofs.global_of_free(i).is_multiple_of(2))
             .map(|i| loads.proportional[i])
             .sum();
         assert!((fx + 1.5 * 2.0).abs() < 1e-12);

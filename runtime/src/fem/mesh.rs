@@ -69,11 +69,11 @@ impl Mesh {
         grading: f64,
     ) -> Result<Mesh, MeshError> {
         for (what, value) in [("lx", lx), ("ly", ly), ("nx", nx as f64), ("ny", ny as f64)] {
-            if !(value > 0.0) || !value.is_finite() {
+            if value.is_nan() || value <= 0.0 || !value.is_finite() {
                 return Err(MeshError::NotPositive { what, value });
             }
         }
-        if !(grading >= 1.0) || !grading.is_finite() {
+        if grading.is_nan() || grading < 1.0 || !grading.is_finite() {
             return Err(MeshError::Grading(grading));
         }
         let xs = graded_breakpoints(lx, nx, grading);
@@ -82,7 +82,7 @@ impl Mesh {
         let gx = 2 * nx + 1;
         let gy = 2 * ny + 1;
         let coordinate = |breaks: &[f64], k: usize| {
-            if k % 2 == 0 {
+            if k.is_multiple_of(2) {
                 breaks[k / 2]
             } else {
                 0.5 * (breaks[k / 2] + breaks[k / 2 + 1])
@@ -92,7 +92,7 @@ impl Mesh {
         let mut nodes = Vec::new();
         for j in 0..gy {
             for i in 0..gx {
-                if i % 2 == 1 && j % 2 == 1 {
+                if !i.is_multiple_of(2) && !j.is_multiple_of(2) {
                     continue;
                 }
                 id[j * gx + i] = nodes.len();

@@ -57,7 +57,8 @@ pub struct AnmOptions {
     /// Predict the bifurcation load from each step's tangent (one shift-invert eigen-solve per
     /// step with the already factorised tangent).
     pub predict_bifurcation: bool,
-    /// Cap on the path parameter of one step (used when the series is exactly polynomial).
+    /// Cap on the path parameter of one step; when the series is exactly polynomial (no
+    /// finite range) the step uses this value, or 1 if it is infinite.
     pub max_step_length: f64,
 }
 
@@ -76,7 +77,7 @@ impl Default for AnmOptions {
                 max_iterations: 12,
             },
             predict_bifurcation: true,
-            max_step_length: 1.0,
+            max_step_length: f64::INFINITY,
         }
     }
 }
@@ -274,12 +275,15 @@ pub fn follow_path_anm<M: EnergyModel>(
             evaluate(&series, if use_pade { pade.as_ref() } else { None }, a)
         };
         if !a.is_finite() {
-            a = options.max_step_length;
+            a = if options.max_step_length.is_finite() { options.max_step_length } else { 1.0 };
         }
         a = a.min(options.max_step_length);
         let mut hit_max_load = false;
-        if let Some(max_load) = options.max_load {
-            if evaluator(a).load >= max_load && state.load < max_load {
+        if let Some(max_load) = options.max_load
+            && evaluator(a).load >= max_load
+            && state.load < max_load
+        {
+            {
                 // Bisection for λ(a*) = max_load.
                 let (mut lo, mut hi) = (0.0, a);
                 for _ in 0..60 {

@@ -30,6 +30,8 @@ pub struct EllipticityReport {
     pub direction: f64,
     /// Field whose pivot is the smallest at the worst point.
     pub field: &'static str,
+    /// Area fraction of the domain (quadrature weights) where the condition fails.
+    pub violated_fraction: f64,
 }
 
 /// Most fields with gradients the check handles.
@@ -47,15 +49,12 @@ fn smallest_pivot(a: &mut [[f64; MAX_GRADIENT_FIELDS]; MAX_GRADIENT_FIELDS], m: 
             // Not positive definite: the remaining pivots are meaningless.
             return smallest;
         }
-        for i in (k + 1)..m {
-            let l = a[i][k] / d;
-            for j in (k + 1)..=i {
-                a[i][j] -= l * a[j][k];
-            }
-        }
-        for i in (k + 1)..m {
-            for j in (k + 1)..i {
-                a[j][i] = a[i][j];
+        // Schur complement of the pivot (full symmetric update; m ≤ 8).
+        let pivot_row = a[k];
+        for row in a.iter_mut().take(m).skip(k + 1) {
+            let l = row[k] / d;
+            for (j, value) in row.iter_mut().enumerate().take(m).skip(k + 1) {
+                *value -= l * pivot_row[j];
             }
         }
     }
@@ -89,7 +88,10 @@ pub fn legendre_hadamard<M: EnergyModel>(
         location: [0.0, 0.0],
         direction: 0.0,
         field: spec.fields.first().copied().unwrap_or(""),
+        violated_fraction: 0.0,
     };
+    let mut total_area = 0.0;
+    let mut violated_area = 0.0;
     if m == 0 {
         return report;
     }
@@ -100,6 +102,8 @@ pub fn legendre_hadamard<M: EnergyModel>(
             continue;
         };
         for q in 0..values.weights.len() {
+            total_area += values.weights[q];
+            let mut point_violated = false;
             // H over (gradient field slot, axis) pairs: index 2 * slot + axis.
             let mut h = vec![0.0; 4 * m * m];
             for (t, term) in spec.terms.iter().enumerate() {
@@ -160,6 +164,7 @@ pub fn legendre_hadamard<M: EnergyModel>(
                 }
                 let (pivot, at) = smallest_pivot(&mut acoustic, m);
                 let margin = if scale > 0.0 { pivot / scale } else { 0.0 };
+                point_violated |= margin <= -MARGIN_TOLERANCE;
                 if margin < report.worst_margin {
                     report.worst_margin = margin;
                     report.location = values.points[q];
@@ -167,7 +172,13 @@ pub fn legendre_hadamard<M: EnergyModel>(
                     report.field = spec.fields[gradient_fields[at]];
                 }
             }
+            if point_violated {
+                violated_area += values.weights[q];
+            }
         }
+    }
+    if total_area > 0.0 {
+        report.violated_fraction = violated_area / total_area;
     }
     report.elliptic = report.worst_margin > -MARGIN_TOLERANCE;
     report
