@@ -254,10 +254,16 @@ impl ModelVisitor for RunVisitor<'_> {
                 follow_path_anm(&problem, start, &mut factor, &options, &mut observer, &mut anm_steps)
             }
             PathMethod::Riks => {
+                // Arc length in (U [mm], λ/λ_c), at most 1 % of the threshold per step: larger
+                // steps jump over the sharp turn of the perturbed branch at the threshold and
+                // converge back onto the unstable fundamental branch.
                 let options = RiksOptions {
                     tolerance: scene.solver.tolerance,
                     max_steps: scene.solver.max_steps,
                     max_load,
+                    load_scale: 1.0 / lambda_c.abs().max(f64::MIN_POSITIVE),
+                    initial_arc_length: 0.01,
+                    max_arc_length: 0.01,
                     ..RiksOptions::default()
                 };
                 follow_path_riks(&problem, start, &mut factor, &options, &mut observer)
