@@ -178,7 +178,8 @@ pub struct SolverSpec {
     pub max_load: f64,
     /// Stop when $`\max |w_{env}|/h`$ reaches this value, key `solver.max_envelope_over_h`.
     pub max_envelope_over_thickness: f64,
-    /// Small transverse load on the envelope equation, key `solver.perturbation`.
+    /// Small uniform transverse load on the envelope, $`f = \text{perturbation}\cdot h D Q^4`$
+    /// (dimensionless: the envelope/h it would give on an unloaded sheet), key `solver.perturbation`.
     pub perturbation: f64,
     /// Use Padé approximants, key `solver.pade`.
     pub pade: bool,
