@@ -11,8 +11,16 @@ use wrinkle::scene::Scene;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let arguments: Vec<String> = std::env::args().skip(1).collect();
-    let nx = arguments.first().map(|s| s.parse()).transpose()?.unwrap_or(40usize);
-    let ny = arguments.get(1).map(|s| s.parse()).transpose()?.unwrap_or(20usize);
+    let nx = arguments
+        .first()
+        .map(|s| s.parse())
+        .transpose()?
+        .unwrap_or(40usize);
+    let ny = arguments
+        .get(1)
+        .map(|s| s.parse())
+        .transpose()?
+        .unwrap_or(20usize);
     let base = std::env::temp_dir().join("wrinkle-anm-vs-riks");
     let mut rows = Vec::new();
     let mut curves: Vec<Vec<PathPoint>> = Vec::new();
@@ -52,14 +60,19 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut worst: f64 = 0.0;
     for p in riks.iter().filter(|p| p.max_envelope_over_h > 0.1) {
         if let Some(w) = anm.windows(2).find_map(|w| {
-            (w[0].lambda <= p.lambda && p.lambda <= w[1].lambda && w[1].lambda > w[0].lambda).then(|| {
-                let t = (p.lambda - w[0].lambda) / (w[1].lambda - w[0].lambda);
-                w[0].max_envelope_over_h + t * (w[1].max_envelope_over_h - w[0].max_envelope_over_h)
-            })
+            (w[0].lambda <= p.lambda && p.lambda <= w[1].lambda && w[1].lambda > w[0].lambda).then(
+                || {
+                    let t = (p.lambda - w[0].lambda) / (w[1].lambda - w[0].lambda);
+                    w[0].max_envelope_over_h
+                        + t * (w[1].max_envelope_over_h - w[0].max_envelope_over_h)
+                },
+            )
         }) {
             worst = worst.max((w - p.max_envelope_over_h).abs() / p.max_envelope_over_h);
         }
     }
-    println!("largest relative difference of max envelope/h (ANM interpolated at Riks points, envelope/h > 0.1): {worst:.2e}");
+    println!(
+        "largest relative difference of max envelope/h (ANM interpolated at Riks points, envelope/h > 0.1): {worst:.2e}"
+    );
     Ok(())
 }

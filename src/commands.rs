@@ -60,8 +60,7 @@ pub fn wavenumber_guess(scene: &Scene) -> f64 {
             let nu = scene.material.poisson_ratio;
             let h = scene.material.thickness;
             let width = scene.geometry.length_x.min(scene.geometry.length_y);
-            (12.0 * std::f64::consts::PI.powi(2) * (1.0 - nu * nu)).powf(0.25)
-                / (h * width).sqrt()
+            (12.0 * std::f64::consts::PI.powi(2) * (1.0 - nu * nu)).powf(0.25) / (h * width).sqrt()
                 * 1e-3f64.powf(0.25)
         }
     }
@@ -69,7 +68,11 @@ pub fn wavenumber_guess(scene: &Scene) -> f64 {
 
 /// Legendre–Hadamard check of the state at the first critical load (pre-buckling state
 /// extrapolated linearly to $`\lambda_c`$).
-fn ellipticity_at_critical<M: EnergyModel>(problem: &Problem<M>, buckling: &LinearBuckling, reference_load: f64) -> EllipticityReport {
+fn ellipticity_at_critical<M: EnergyModel>(
+    problem: &Problem<M>,
+    buckling: &LinearBuckling,
+    reference_load: f64,
+) -> EllipticityReport {
     let mu = buckling.critical_loads[0] - reference_load;
     let state: Vec<f64> = buckling
         .prebuckling
@@ -89,7 +92,9 @@ fn critical_load_at<M: EnergyModel>(
     options: &LinearBucklingOptions,
 ) -> Result<LinearBuckling, Error> {
     let mut model = problem.assembler.model().clone();
-    model.set_parameter("wavenumber", q).map_err(Error::Solver)?;
+    model
+        .set_parameter("wavenumber", q)
+        .map_err(Error::Solver)?;
     problem.assembler.set_model(model);
     linear_buckling(problem, factor, options).map_err(solver_error)
 }
@@ -126,7 +131,9 @@ fn minimise_over_wavenumber<M: EnergyModel>(
     guess: f64,
     options: &LinearBucklingOptions,
 ) -> Result<(f64, LinearBuckling, usize), Error> {
-    let scan: Vec<f64> = (0..9).map(|k| guess * 2f64.powf((k as f64 - 4.0) / 2.0)).collect();
+    let scan: Vec<f64> = (0..9)
+        .map(|k| guess * 2f64.powf((k as f64 - 4.0) / 2.0))
+        .collect();
     let mut values = Vec::with_capacity(scan.len());
     for &q in &scan {
         values.push(valid_critical_load(problem, factor, q, options).unwrap_or(f64::INFINITY));
@@ -141,17 +148,33 @@ fn minimise_over_wavenumber<M: EnergyModel>(
             scan[scan.len() - 1]
         )));
     }
-    let low = if best == 0 { scan[0] / 2.0 } else { scan[best - 1] };
-    let high = if best + 1 == scan.len() { scan[best] * 2.0 } else { scan[best + 1] };
+    let low = if best == 0 {
+        scan[0] / 2.0
+    } else {
+        scan[best - 1]
+    };
+    let high = if best + 1 == scan.len() {
+        scan[best] * 2.0
+    } else {
+        scan[best + 1]
+    };
     let minimum = minimize_scalar(
-        |q| Ok::<f64, Error>(valid_critical_load(problem, factor, q, options).unwrap_or(f64::INFINITY)),
+        |q| {
+            Ok::<f64, Error>(
+                valid_critical_load(problem, factor, q, options).unwrap_or(f64::INFINITY),
+            )
+        },
         low,
         high,
         1e-8 * scan[best],
         200,
     )?;
     let buckling = critical_load_at(problem, factor, minimum.argument, options)?;
-    Ok((minimum.argument, buckling, scan.len() + minimum.evaluations + 1))
+    Ok((
+        minimum.argument,
+        buckling,
+        scan.len() + minimum.evaluations + 1,
+    ))
 }
 
 struct BuckleVisitor<'a> {
@@ -223,7 +246,8 @@ impl ModelVisitor for BuckleVisitor<'_> {
 
 /// Linear buckling analysis of a scene.
 pub fn buckle(scene: &Scene) -> Result<BuckleReport, Error> {
-    with_model(&scene.model.name, BuckleVisitor { scene }).unwrap_or_else(|| Err(unknown_model(scene)))
+    with_model(&scene.model.name, BuckleVisitor { scene })
+        .unwrap_or_else(|| Err(unknown_model(scene)))
 }
 
 /// Path following of a scene, writing its outputs into `output_directory`. A path that ends by

@@ -75,7 +75,11 @@ pub fn run(scene: &Scene, output_directory: &Path) -> Result<RunReport, Error> {
         Err(crate::setup::scene_error(
             scene,
             "model.name",
-            format!("unknown model `{}` (models: {})", scene.model.name, wrinkle_models::names().join(", ")),
+            format!(
+                "unknown model `{}` (models: {})",
+                scene.model.name,
+                wrinkle_models::names().join(", ")
+            ),
         ))
     })
 }
@@ -94,7 +98,11 @@ impl ModelVisitor for RunVisitor<'_> {
         configure_model(scene, &mut model, q)?;
         let h = scene.material.thickness;
         let w_field = envelope_field(spec).ok_or_else(|| {
-            crate::setup::scene_error(scene, "model.name", format!("model `{}` has no envelope field `w`", spec.name))
+            crate::setup::scene_error(
+                scene,
+                "model.name",
+                format!("model `{}` has no envelope field `w`", spec.name),
+            )
         })?;
         // Transverse perturbation: the load that would give envelope/h = `perturbation` on an
         // unloaded sheet, f = perturbation · h · D Q⁴.
@@ -110,11 +118,12 @@ impl ModelVisitor for RunVisitor<'_> {
         let direction = scene.model.direction_degrees.to_radians();
         let lambda_c = self.threshold.critical_load;
         let biaxial = scene.load.kind == LoadKind::Biaxial;
-        let closed_form_amplitude = (biaxial && spec.name == "reference-envelope" && scene.model.direction_degrees == 0.0)
-            .then(|| {
-                let rectangle = scene.clamped_rectangle();
-                (rectangle.aspect_ratio(), nu)
-            });
+        let closed_form_amplitude =
+            (biaxial && spec.name == "reference-envelope" && scene.model.direction_degrees == 0.0)
+                .then(|| {
+                    let rectangle = scene.clamped_rectangle();
+                    (rectangle.aspect_ratio(), nu)
+                });
 
         let mut factor = SparseFactorization::analyze(problem.assembler.pattern())
             .map_err(|e| Error::Solver(format!("symbolic analysis of the tangent: {e}")))?;
@@ -128,23 +137,39 @@ impl ModelVisitor for RunVisitor<'_> {
         let mut vtu_written: Vec<(f64, PathBuf)> = Vec::new();
         let mut vtu_errors: Vec<String> = Vec::new();
         let target = scene.solver.max_envelope_over_thickness;
-        let profile_levels: Vec<f64> = [0.05, 0.25, 0.5, 0.75, 1.0].iter().map(|f| f * target).collect();
+        let profile_levels: Vec<f64> = [0.05, 0.25, 0.5, 0.75, 1.0]
+            .iter()
+            .map(|f| f * target)
+            .collect();
         let mut profiles: Vec<Profiles> = Vec::new();
         let progress = Progress::new(1000, "wrinkle run");
-        let mut last_state = PathState { displacement: vec![], load: 0.0 };
+        let mut last_state = PathState {
+            displacement: vec![],
+            load: 0.0,
+        };
 
         let sample_profiles = |global: &[f64], load: f64| Profiles {
             load,
             along_x: (0..=200)
                 .map(|k| {
                     let x = bounds[0] + (bounds[1] - bounds[0]) * k as f64 / 200.0;
-                    (x, mesh.interpolate(global, nf, w_field, [x, centre[1]]).unwrap_or(0.0) / h)
+                    (
+                        x,
+                        mesh.interpolate(global, nf, w_field, [x, centre[1]])
+                            .unwrap_or(0.0)
+                            / h,
+                    )
                 })
                 .collect(),
             along_y: (0..=200)
                 .map(|k| {
                     let y = bounds[2] + (bounds[3] - bounds[2]) * k as f64 / 200.0;
-                    (y, mesh.interpolate(global, nf, w_field, [centre[0], y]).unwrap_or(0.0) / h)
+                    (
+                        y,
+                        mesh.interpolate(global, nf, w_field, [centre[0], y])
+                            .unwrap_or(0.0)
+                            / h,
+                    )
                 })
                 .collect(),
         };
@@ -155,7 +180,9 @@ impl ModelVisitor for RunVisitor<'_> {
             let max_envelope = (0..mesh.nodes.len())
                 .map(|n| global[n * nf + w_field].abs())
                 .fold(0.0, f64::max);
-            let centre_value = mesh.interpolate(&global, nf, w_field, centre).unwrap_or(0.0);
+            let centre_value = mesh
+                .interpolate(&global, nf, w_field, centre)
+                .unwrap_or(0.0);
             let ellipticity = legendre_hadamard(&problem, &state.displacement, state.load);
             if !ellipticity.elliptic && first_loss_of_ellipticity.is_none() {
                 first_loss_of_ellipticity = Some((state.load, ellipticity.clone()));
@@ -198,23 +225,36 @@ impl ModelVisitor for RunVisitor<'_> {
                         .map(|(a, b)| a + t * (b - a))
                         .collect();
                     let g = problem.dofs().expand(&interpolated, requested);
-                    let path = self.directory.join(format!("fields_load_{requested:.6}.vtu"));
+                    let path = self
+                        .directory
+                        .join(format!("fields_load_{requested:.6}.vtu"));
                     match write_fields_vtu(&path, &mesh, spec.fields, &g, &[]) {
                         Ok(()) => vtu_written.push((requested, path)),
                         Err(e) => vtu_errors.push(format!("{}: {e}", path.display())),
                     }
                 }
             }
-            while profiles.len() < profile_levels.len() && max_envelope / h >= profile_levels[profiles.len()] {
+            while profiles.len() < profile_levels.len()
+                && max_envelope / h >= profile_levels[profiles.len()]
+            {
                 profiles.push(sample_profiles(&global, state.load));
             }
             previous_state = Some(state.clone());
             last_state = state.clone();
             progress.update(
                 (1000.0 * (max_envelope / h / target).clamp(0.0, 1.0)) as u64,
-                &format!("step {} λ = {:.5e} envelope/h = {:.3}", event.step, state.load, max_envelope / h),
+                &format!(
+                    "step {} λ = {:.5e} envelope/h = {:.3}",
+                    event.step,
+                    state.load,
+                    max_envelope / h
+                ),
             );
-            if max_envelope / h >= target { PathControl::Stop } else { PathControl::Continue }
+            if max_envelope / h >= target {
+                PathControl::Stop
+            } else {
+                PathControl::Continue
+            }
         };
 
         // Start on the path: equilibrium at λ = 0 under the fixed loads (tension, perturbation).
@@ -251,7 +291,14 @@ impl ModelVisitor for RunVisitor<'_> {
                     },
                     ..AnmOptions::default()
                 };
-                follow_path_anm(&problem, start, &mut factor, &options, &mut observer, &mut anm_steps)
+                follow_path_anm(
+                    &problem,
+                    start,
+                    &mut factor,
+                    &options,
+                    &mut observer,
+                    &mut anm_steps,
+                )
             }
             PathMethod::Riks => {
                 // Arc length in (U [mm], λ/λ_c), at most 1 % of the threshold per step: larger
@@ -269,7 +316,11 @@ impl ModelVisitor for RunVisitor<'_> {
                 follow_path_riks(&problem, start, &mut factor, &options, &mut observer)
             }
         };
-        progress.finish(&format!("{} ({} steps)", result.stop.describe(), result.statistics.steps));
+        progress.finish(&format!(
+            "{} ({} steps)",
+            result.stop.describe(),
+            result.statistics.steps
+        ));
 
         // ---- outputs ----
         let mut files = Vec::new();
@@ -277,15 +328,24 @@ impl ModelVisitor for RunVisitor<'_> {
         let csv = dir.join("path.csv");
         write_path_csv(&csv, &points).map_err(io_error(&csv))?;
         files.push(csv);
-        let final_global = problem.dofs().expand(&last_state.displacement, last_state.load);
+        let final_global = problem
+            .dofs()
+            .expand(&last_state.displacement, last_state.load);
         let fields = dir.join("fields_final.vtu");
-        write_fields_vtu(&fields, &mesh, spec.fields, &final_global, &[]).map_err(io_error(&fields))?;
+        write_fields_vtu(&fields, &mesh, spec.fields, &final_global, &[])
+            .map_err(io_error(&fields))?;
         files.push(fields);
-        let envelope_at = |x: f64, y: f64| mesh.interpolate(&final_global, nf, w_field, [x, y]).unwrap_or(0.0);
-        let refine = |length: f64| ((length * q / (2.0 * std::f64::consts::PI)) * 12.0).clamp(50.0, 1500.0) as usize;
+        let envelope_at = |x: f64, y: f64| {
+            mesh.interpolate(&final_global, nf, w_field, [x, y])
+                .unwrap_or(0.0)
+        };
+        let refine = |length: f64| {
+            ((length * q / (2.0 * std::f64::consts::PI)) * 12.0).clamp(50.0, 1500.0) as usize
+        };
         let (sx, sy) = (refine(bounds[1] - bounds[0]), refine(bounds[3] - bounds[2]));
         let surface = dir.join("surface_final.vtu");
-        write_surface_vtu(&surface, bounds, sx, sy, &envelope_at, q, direction, 1.0).map_err(io_error(&surface))?;
+        write_surface_vtu(&surface, bounds, sx, sy, &envelope_at, q, direction, 1.0)
+            .map_err(io_error(&surface))?;
         files.push(surface);
         for (_, p) in &vtu_written {
             files.push(p.clone());
@@ -293,18 +353,32 @@ impl ModelVisitor for RunVisitor<'_> {
 
         // Plots.
         let plots_written = if scene.output.plots {
-            let x_label = if biaxial { "-N_X (N/mm)" } else { "end displacement (mm)" };
+            let x_label = if biaxial {
+                "-N_X (N/mm)"
+            } else {
+                "end displacement (mm)"
+            };
             let mut curves = vec![
                 Curve {
                     label: "FE max envelope/h".into(),
-                    points: points.iter().map(|p| (p.lambda, p.max_envelope_over_h)).collect(),
+                    points: points
+                        .iter()
+                        .map(|p| (p.lambda, p.max_envelope_over_h))
+                        .collect(),
                     style: CurveStyle::LineWithMarkers(
-                        points.iter().filter(|p| !p.interior).map(|p| (p.lambda, p.max_envelope_over_h)).collect(),
+                        points
+                            .iter()
+                            .filter(|p| !p.interior)
+                            .map(|p| (p.lambda, p.max_envelope_over_h))
+                            .collect(),
                     ),
                 },
                 Curve::line(
                     "FE centre envelope/h",
-                    points.iter().map(|p| (p.lambda, p.center_envelope_over_h)).collect(),
+                    points
+                        .iter()
+                        .map(|p| (p.lambda, p.center_envelope_over_h))
+                        .collect(),
                 ),
             ];
             if let Some((alpha, nu)) = closed_form_amplitude {
@@ -313,7 +387,10 @@ impl ModelVisitor for RunVisitor<'_> {
                 let closed: Vec<(f64, f64)> = (0..=200)
                     .map(|k| {
                         let l = lambda_c + (top - lambda_c) * k as f64 / 200.0;
-                        (l, crate::closed_form::amplitude_from_load_ratio(alpha, nu, l / lambda_c))
+                        (
+                            l,
+                            crate::closed_form::amplitude_from_load_ratio(alpha, nu, l / lambda_c),
+                        )
                     })
                     .collect();
                 curves.push(Curve::dashed("one-mode closed form (62)", closed));
@@ -322,15 +399,25 @@ impl ModelVisitor for RunVisitor<'_> {
                 label: format!("linear buckling {lambda_c:.5}"),
                 x: lambda_c,
             }];
-            if let Some((load, _)) = &first_loss_of_ellipticity {
+            if let Some((load, report)) = &first_loss_of_ellipticity {
                 markers.push(VerticalMarker {
-                    label: format!("loss of ellipticity {load:.5}"),
+                    label: format!(
+                        "loss of ellipticity {load:.5} ({:.2} % of area)",
+                        100.0 * report.violated_fraction
+                    ),
                     x: *load,
                 });
             }
             let stem = dir.join("response");
-            plot_response(&stem, &format!("{} — envelope amplitude", spec.name), &curves, x_label, "envelope / h", &markers)
-                .map_err(io_error(&stem))?;
+            plot_response(
+                &stem,
+                &format!("{} — envelope amplitude", spec.name),
+                &curves,
+                x_label,
+                "envelope / h",
+                &markers,
+            )
+            .map_err(io_error(&stem))?;
             files.push(stem.with_extension("png"));
             files.push(stem.with_extension("svg"));
             for (name, label, pick) in [
@@ -342,13 +429,23 @@ impl ModelVisitor for RunVisitor<'_> {
                     .map(|p| {
                         Curve::line(
                             format!("λ = {:.5}", p.load),
-                            if pick == 0 { p.along_x.clone() } else { p.along_y.clone() },
+                            if pick == 0 {
+                                p.along_x.clone()
+                            } else {
+                                p.along_y.clone()
+                            },
                         )
                     })
                     .collect();
                 if !curves.is_empty() {
                     let stem = dir.join(name);
-                    plot_profiles(&stem, &format!("envelope / h along {label}"), label, &curves).map_err(io_error(&stem))?;
+                    plot_profiles(
+                        &stem,
+                        &format!("envelope / h along {label}"),
+                        label,
+                        &curves,
+                    )
+                    .map_err(io_error(&stem))?;
                     files.push(stem.with_extension("png"));
                     files.push(stem.with_extension("svg"));
                 }
@@ -356,11 +453,24 @@ impl ModelVisitor for RunVisitor<'_> {
             let (mx, my) = (sx.min(900), sy.min(450));
             let values: Vec<f64> = crate::output::grid_cell_centres(bounds, mx, my)
                 .into_iter()
-                .map(|(x, y)| 2.0 * envelope_at(x, y) * (q * (direction.cos() * x + direction.sin() * y)).cos())
+                .map(|(x, y)| {
+                    2.0 * envelope_at(x, y)
+                        * (q * (direction.cos() * x + direction.sin() * y)).cos()
+                })
                 .collect();
             let stem = dir.join("wrinkles");
-            plot_map(&stem, &format!("reconstructed deflection w = 2 w_env cos(Q e·X) (mm), λ = {:.5}", last_state.load), bounds, mx, my, &values)
-                .map_err(io_error(&stem))?;
+            plot_map(
+                &stem,
+                &format!(
+                    "reconstructed deflection w = 2 w_env cos(Q e·X) (mm), λ = {:.5}",
+                    last_state.load
+                ),
+                bounds,
+                mx,
+                my,
+                &values,
+            )
+            .map_err(io_error(&stem))?;
             files.push(stem.with_extension("png"));
             files.push(stem.with_extension("svg"));
             true
@@ -382,7 +492,8 @@ impl ModelVisitor for RunVisitor<'_> {
             "detected_bifurcation": result.bifurcation.map(|(load, step)| json!({"load": load, "step": step,
                 "relative_difference_to_linear_buckling": (load - lambda_c) / lambda_c})),
             "loss_of_ellipticity": first_loss_of_ellipticity.as_ref().map(|(load, r)| json!({
-                "load": load, "location": r.location, "direction_rad": r.direction, "field": r.field, "margin": r.worst_margin})),
+                "load": load, "location": r.location, "direction_rad": r.direction, "field": r.field, "margin": r.worst_margin,
+                "area_fraction": r.violated_fraction})),
             "perturbation_load": force,
             "stop": result.stop.describe(),
             "failed": failure.is_some(),
@@ -416,12 +527,19 @@ impl ModelVisitor for RunVisitor<'_> {
             "scene": scene.echo_json(),
         });
         let summary_path = dir.join("summary.json");
-        std::fs::write(&summary_path, serde_json::to_string_pretty(&summary).expect("serialisable"))
-            .map_err(io_error(&summary_path))?;
+        std::fs::write(
+            &summary_path,
+            serde_json::to_string_pretty(&summary).expect("serialisable"),
+        )
+        .map_err(io_error(&summary_path))?;
         files.push(summary_path);
         let scene_path = dir.join("scene.toml");
         std::fs::write(&scene_path, scene.to_toml_string()).map_err(io_error(&scene_path))?;
         files.push(scene_path);
-        Ok(RunReport { summary, files, failure })
+        Ok(RunReport {
+            summary,
+            files,
+            failure,
+        })
     }
 }

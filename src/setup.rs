@@ -13,9 +13,9 @@
 use crate::Error;
 use crate::scene::{LoadKind, Scene};
 use std::sync::Arc;
+use wrinkle_runtime::EnergyModel;
 use wrinkle_runtime::fem::{BodyLoad, DirichletCondition, EdgeTraction, Mesh};
 use wrinkle_runtime::problem::Problem;
-use wrinkle_runtime::EnergyModel;
 
 pub(crate) fn scene_error(scene: &Scene, key: &str, message: impl Into<String>) -> Error {
     Error::scene(format!("scene {}", scene.source), key, message)
@@ -25,7 +25,11 @@ pub(crate) fn scene_error(scene: &Scene, key: &str, message: impl Into<String>) 
 /// `material.*`, `direction` (radians) from `model.direction` (degrees), `wavenumber` when fixed,
 /// then every `model.parameters.NAME`. A parameter the model declares but the scene cannot set
 /// is an error naming it.
-pub fn configure_model<M: EnergyModel>(scene: &Scene, model: &mut M, wavenumber: f64) -> Result<(), Error> {
+pub fn configure_model<M: EnergyModel>(
+    scene: &Scene,
+    model: &mut M,
+    wavenumber: f64,
+) -> Result<(), Error> {
     let spec = M::SPEC;
     for name in spec.parameters {
         let value = match *name {
@@ -40,7 +44,10 @@ pub fn configure_model<M: EnergyModel>(scene: &Scene, model: &mut M, wavenumber:
                     return Err(scene_error(
                         scene,
                         &format!("model.parameters.{other}"),
-                        format!("model `{}` needs parameter `{other}`; set it in [model.parameters]", spec.name),
+                        format!(
+                            "model `{}` needs parameter `{other}`; set it in [model.parameters]",
+                            spec.name
+                        ),
                     ));
                 }
             },
@@ -84,7 +91,11 @@ fn field(scene: &Scene, spec: &wrinkle_runtime::ModelSpec, name: &str) -> Result
 /// Builds the problem of `scene` for `model` (parameters already set).
 /// `perturbation` adds a uniform fixed load on `w` (the envelope), used to follow the wrinkled
 /// branch in path following.
-pub fn build_problem<M: EnergyModel>(scene: &Scene, model: M, perturbation: f64) -> Result<Problem<M>, Error> {
+pub fn build_problem<M: EnergyModel>(
+    scene: &Scene,
+    model: M,
+    perturbation: f64,
+) -> Result<Problem<M>, Error> {
     let spec = M::SPEC;
     let mesh = Arc::new(
         Mesh::rectangle(
@@ -150,7 +161,12 @@ pub fn build_problem<M: EnergyModel>(scene: &Scene, model: M, perturbation: f64)
         .filter(|c| c.field == w)
         .map(|c| c.edge.clone())
         .collect();
-    for (k, _) in spec.fields.iter().enumerate().filter(|(k, _)| ![u, v, w].contains(k)) {
+    for (k, _) in spec
+        .fields
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| ![u, v, w].contains(k))
+    {
         let edges = envelope_edges.clone();
         for edge in edges {
             conditions.push(fixed(&edge, k, 0.0));

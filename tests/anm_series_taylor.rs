@@ -46,7 +46,11 @@ fn series_residual_matches_taylor_coefficients_along_a_quadratic_curve() {
     let n = problem.free_count();
     let mut rng = StdRng::seed_from_u64(42);
     // Realistic sizes: displacements ~1e-2 mm, envelope ~h.
-    let mut vector = |scale: f64| -> Vec<f64> { (0..n).map(|_| scale * rng.random_range(-1.0..1.0)).collect() };
+    let mut vector = |scale: f64| -> Vec<f64> {
+        (0..n)
+            .map(|_| scale * rng.random_range(-1.0..1.0))
+            .collect()
+    };
     let curve = [vector(0.05), vector(0.03), vector(0.02)];
     let load = [0.05, 0.02, -0.01];
     // Series evaluation: coefficients 0..=6 of g.
@@ -64,11 +68,15 @@ fn series_residual_matches_taylor_coefficients_along_a_quadratic_curve() {
     load_series.coefficients_mut()[..3].copy_from_slice(&load);
     let series_residual = problem.residual(&free, load_series);
     // f64 residuals at Chebyshev points, fitted.
-    let points: Vec<f64> = (0..13).map(|j| ((2 * j + 1) as f64 * std::f64::consts::PI / 26.0).cos()).collect();
+    let points: Vec<f64> = (0..13)
+        .map(|j| ((2 * j + 1) as f64 * std::f64::consts::PI / 26.0).cos())
+        .collect();
     let samples: Vec<Vec<f64>> = points
         .iter()
         .map(|&a| {
-            let u: Vec<f64> = (0..n).map(|i| curve[0][i] + a * curve[1][i] + a * a * curve[2][i]).collect();
+            let u: Vec<f64> = (0..n)
+                .map(|i| curve[0][i] + a * curve[1][i] + a * a * curve[2][i])
+                .collect();
             problem.residual(&u, load[0] + a * load[1] + a * a * load[2])
         })
         .collect();
@@ -81,12 +89,20 @@ fn series_residual_matches_taylor_coefficients_along_a_quadratic_curve() {
                 polynomial_fit(&points, &values, 8)[k]
             })
             .collect();
-        let scale = norm(&series_residual.iter().map(|s| s.coefficient(0)).collect::<Vec<_>>());
+        let scale = norm(
+            &series_residual
+                .iter()
+                .map(|s| s.coefficient(0))
+                .collect::<Vec<_>>(),
+        );
         let diff: Vec<f64> = series_k.iter().zip(&fitted_k).map(|(a, b)| a - b).collect();
         worst = worst.max(norm(&diff) / scale);
     }
     eprintln!("worst relative difference of Taylor coefficients: {worst:e}");
-    assert!(worst < 1e-8, "series residual vs fitted Taylor coefficients: {worst:e}");
+    assert!(
+        worst < 1e-8,
+        "series residual vs fitted Taylor coefficients: {worst:e}"
+    );
 }
 
 #[test]
@@ -96,7 +112,15 @@ fn anm_series_residual_is_of_order_n_plus_one() {
     let mut factor = SparseFactorization::analyze(problem.assembler.pattern()).unwrap();
     let mut matrix = problem.new_matrix();
     let load = 0.08;
-    let equilibrium = newton(&problem, vec![0.0; n], load, &mut factor, &mut matrix, &NewtonOptions::default()).unwrap();
+    let equilibrium = newton(
+        &problem,
+        vec![0.0; n],
+        load,
+        &mut factor,
+        &mut matrix,
+        &NewtonOptions::default(),
+    )
+    .unwrap();
     let state = PathState {
         displacement: equilibrium.solution,
         load,
@@ -116,5 +140,8 @@ fn anm_series_residual_is_of_order_n_plus_one() {
     }
     let ratio = residual_at(a) / residual_at(0.5 * a);
     eprintln!("a = {a:e}, residual ratio on halving = {ratio}");
-    assert!((40.0..100.0).contains(&ratio), "expected ≈ 2^(N+1) = 64, got {ratio}");
+    assert!(
+        (40.0..100.0).contains(&ratio),
+        "expected ≈ 2^(N+1) = 64, got {ratio}"
+    );
 }

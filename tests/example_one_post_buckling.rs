@@ -37,7 +37,11 @@ fn path_of(summary: &serde_json::Value) -> Vec<PathPoint> {
 }
 
 /// Linear interpolation of `value` at load `lambda` along a path sorted by load.
-fn interpolate(points: &[PathPoint], lambda: f64, value: impl Fn(&PathPoint) -> f64) -> Option<f64> {
+fn interpolate(
+    points: &[PathPoint],
+    lambda: f64,
+    value: impl Fn(&PathPoint) -> f64,
+) -> Option<f64> {
     points.windows(2).find_map(|w| {
         let (a, b) = (&w[0], &w[1]);
         (a.lambda <= lambda && lambda <= b.lambda && b.lambda > a.lambda).then(|| {
@@ -68,20 +72,41 @@ fn check_example_one(nx: usize, ny: usize, order: usize) {
     // Reached the target.
     assert!(points.last().unwrap().max_envelope_over_h >= 2.0 - 1e-9);
     // Bifurcation.
-    let detected = summary["detected_bifurcation"]["load"].as_f64().expect("bifurcation detected");
+    let detected = summary["detected_bifurcation"]["load"]
+        .as_f64()
+        .expect("bifurcation detected");
     let relative = (detected - lambda_c).abs() / lambda_c;
-    eprintln!("{nx}x{ny}: detected bifurcation {detected:.8e}, linear buckling {lambda_c:.8e}, rel {relative:.2e}");
+    eprintln!(
+        "{nx}x{ny}: detected bifurcation {detected:.8e}, linear buckling {lambda_c:.8e}, rel {relative:.2e}"
+    );
     assert!(relative < 1e-4);
     // One-mode closed form near the threshold.
     let at = 1.003 * lambda_c;
     let fe = interpolate(&points, at, |p| p.center_envelope_over_h).unwrap();
     let closed = interpolate(&points, at, |p| p.closed_form_envelope_over_h.unwrap()).unwrap();
     eprintln!("λ/λc = 1.003: centre envelope/h FE {fe:.5}, closed form {closed:.5}");
-    assert!((fe - closed).abs() / closed < 0.05, "FE {fe} vs closed form {closed}");
+    assert!(
+        (fe - closed).abs() / closed < 0.05,
+        "FE {fe} vs closed form {closed}"
+    );
     // Outputs.
-    for file in ["summary.json", "path.csv", "fields_final.vtu", "surface_final.vtu", "response.png", "response.svg", "wrinkles.png", "profiles_x.png", "profiles_y.svg"] {
+    for file in [
+        "summary.json",
+        "path.csv",
+        "fields_final.vtu",
+        "surface_final.vtu",
+        "response.png",
+        "response.svg",
+        "wrinkles.png",
+        "profiles_x.png",
+        "profiles_y.svg",
+    ] {
         let path = dir.join(file);
-        assert!(path.metadata().map(|m| m.len() > 0).unwrap_or(false), "missing {}", path.display());
+        assert!(
+            path.metadata().map(|m| m.len() > 0).unwrap_or(false),
+            "missing {}",
+            path.display()
+        );
     }
     let csv = std::fs::read_to_string(dir.join("path.csv")).unwrap();
     assert_eq!(csv.lines().count(), points.len() + 1);
@@ -97,13 +122,21 @@ fn check_example_one(nx: usize, ny: usize, order: usize) {
     for p in riks_points.iter().filter(|p| p.lambda > 1.01 * lambda_c) {
         if let Some(anm) = interpolate(&points, p.lambda, |q| q.max_envelope_over_h) {
             let difference = (anm - p.max_envelope_over_h).abs() / p.max_envelope_over_h;
-            assert!(difference < 1e-2, "λ {}: ANM {anm} vs Riks {}", p.lambda, p.max_envelope_over_h);
+            assert!(
+                difference < 1e-2,
+                "λ {}: ANM {anm} vs Riks {}",
+                p.lambda,
+                p.max_envelope_over_h
+            );
             compared += 1;
         }
     }
     eprintln!(
         "compared {compared} Riks points; ANM {} steps / {} factorisations, Riks {} steps / {} factorisations",
-        summary["steps"], summary["statistics"]["factorizations"], riks.summary["steps"], riks.summary["statistics"]["factorizations"]
+        summary["steps"],
+        summary["statistics"]["factorizations"],
+        riks.summary["steps"],
+        riks.summary["statistics"]["factorizations"]
     );
     assert!(compared >= 3);
     let _ = std::fs::remove_dir_all(&dir);

@@ -17,7 +17,11 @@ fn model() -> ReferenceEnvelope {
 fn kernels(c: &mut Criterion) {
     let m = model();
     let spec = ReferenceEnvelope::SPEC;
-    let membrane = spec.terms.iter().position(|t| t.name == "membrane").unwrap();
+    let membrane = spec
+        .terms
+        .iter()
+        .position(|t| t.name == "membrane")
+        .unwrap();
     let bending = spec.terms.iter().position(|t| t.name == "bending").unwrap();
     assert_eq!(spec.terms[membrane].jet.len(), 7);
     assert_eq!(spec.terms[bending].jet.len(), 3);

@@ -40,7 +40,10 @@ fn random_state(rng: &mut StdRng) -> [f64; 9] {
     // u, u.x, u.y, v, v.x, v.y, w, w.x, w.y — realistic magnitudes (strains 1e-3, envelope ~h,
     // envelope slopes ~ h / L).
     let mut s = [0.0; 9];
-    for (k, scale) in [1.0, 1e-3, 1e-3, 1.0, 1e-3, 1e-3, 0.1, 5e-3, 5e-3].iter().enumerate() {
+    for (k, scale) in [1.0, 1e-3, 1e-3, 1.0, 1e-3, 1e-3, 0.1, 5e-3, 5e-3]
+        .iter()
+        .enumerate()
+    {
         s[k] = scale * rng.random_range(-1.0..1.0);
     }
     s
@@ -72,16 +75,23 @@ fn hand_density(q: f64, theta: f64, s: &[f64; 9]) -> f64 {
     let gxy = u_y + v_x + 2.0 * w_x * w_y + 2.0 * q * q * w * w * c * sn;
     let eh = YOUNG * THICKNESS / (1.0 - POISSON * POISSON);
     let d = YOUNG * THICKNESS.powi(3) / (12.0 * (1.0 - POISSON * POISSON));
-    let membrane =
-        0.5 * eh * (gx * gx + gy * gy + 2.0 * POISSON * gx * gy + 0.5 * (1.0 - POISSON) * gxy * gxy);
+    let membrane = 0.5
+        * eh
+        * (gx * gx + gy * gy + 2.0 * POISSON * gx * gy + 0.5 * (1.0 - POISSON) * gxy * gxy);
     let along = c * w_x + sn * w_y;
     let across = -sn * w_x + c * w_y;
-    let bending = d * (q.powi(4) * w * w + 6.0 * q * q * along * along + 2.0 * q * q * across * across);
+    let bending =
+        d * (q.powi(4) * w * w + 6.0 * q * q * along * along + 2.0 * q * q * across * across);
     membrane + bending
 }
 
 fn relative(a: &[f64], b: &[f64]) -> f64 {
-    let diff: f64 = a.iter().zip(b).map(|(x, y)| (x - y).powi(2)).sum::<f64>().sqrt();
+    let diff: f64 = a
+        .iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).powi(2))
+        .sum::<f64>()
+        .sqrt();
     let scale: f64 = b.iter().map(|y| y * y).sum::<f64>().sqrt();
     if scale == 0.0 { diff } else { diff / scale }
 }
@@ -124,9 +134,21 @@ fn check_case(q: f64, theta: f64, seed: u64) {
                 })
                 .collect();
             let energy = |x: &[f64]| m.energy(t, x);
-            let fd: Vec<f64> = (0..n).map(|i| five_point(&energy, &jet, i, step(jet[i]))).collect();
-            assert!(relative(&residual, &dual) < 1e-12, "term {} residual vs dual: {:e}", term.name, relative(&residual, &dual));
-            assert!(relative(&residual, &fd) < 1e-9, "term {} residual vs FD: {:e}", term.name, relative(&residual, &fd));
+            let fd: Vec<f64> = (0..n)
+                .map(|i| five_point(&energy, &jet, i, step(jet[i])))
+                .collect();
+            assert!(
+                relative(&residual, &dual) < 1e-12,
+                "term {} residual vs dual: {:e}",
+                term.name,
+                relative(&residual, &dual)
+            );
+            assert!(
+                relative(&residual, &fd) < 1e-9,
+                "term {} residual vs FD: {:e}",
+                term.name,
+                relative(&residual, &fd)
+            );
 
             // Tangent: symbolic (pattern) vs HyperDual64 vs nested finite differences.
             let mut packed = vec![0.0; term.tangent_pattern.len()];
@@ -156,11 +178,24 @@ fn check_case(q: f64, theta: f64, seed: u64) {
                     fd2[i * n + j] = five_point(&gradient_j, &jet, i, step(jet[i]));
                 }
             }
-            assert!(relative(&symbolic, &hyper) < 1e-12, "term {} tangent vs hyper-dual: {:e}", term.name, relative(&symbolic, &hyper));
-            assert!(relative(&symbolic, &fd2) < 1e-9, "term {} tangent vs FD: {:e}", term.name, relative(&symbolic, &fd2));
+            assert!(
+                relative(&symbolic, &hyper) < 1e-12,
+                "term {} tangent vs hyper-dual: {:e}",
+                term.name,
+                relative(&symbolic, &hyper)
+            );
+            assert!(
+                relative(&symbolic, &fd2) < 1e-9,
+                "term {} tangent vs FD: {:e}",
+                term.name,
+                relative(&symbolic, &fd2)
+            );
         }
         let hand = hand_density(q, theta, &state);
-        assert!((total - hand).abs() <= 1e-13 * hand.abs().max(1e-30), "energy {total} vs hand-written {hand}");
+        assert!(
+            (total - hand).abs() <= 1e-13 * hand.abs().max(1e-30),
+            "energy {total} vs hand-written {hand}"
+        );
     }
 }
 
@@ -179,7 +214,10 @@ fn reference_envelope_metadata() {
     let spec = ReferenceEnvelope::SPEC;
     assert_eq!(spec.name, "reference-envelope");
     assert_eq!(spec.fields, &["u", "v", "w"]);
-    assert_eq!(spec.parameters, &["young", "poisson", "thickness", "wavenumber", "direction"]);
+    assert_eq!(
+        spec.parameters,
+        &["young", "poisson", "thickness", "wavenumber", "direction"]
+    );
     // Only first derivatives of u and v are used, never their values.
     for e in spec.jet {
         if e.field < 2 {

@@ -6,8 +6,8 @@ pub mod scalar;
 
 pub use model::{Derivative, EnergyModel, JetEntry, ModelSpec, QuadratureRule, TermSpec};
 pub use scalar::Scalar;
-pub mod linear;
-pub mod solve;
 pub mod fem;
+pub mod linear;
 pub mod problem;
 pub mod series;
+pub mod solve;

@@ -73,8 +73,7 @@ impl<M: EnergyModel> Assembler<M> {
         for term in spec.terms {
             let needs_gradients = spec.terms.iter().any(|t| {
                 t.quadrature == term.quadrature
-                    && t
-                        .jet
+                    && t.jet
                         .iter()
                         .any(|&i| spec.jet[i].derivative != Derivative::Value)
             });
@@ -156,7 +155,13 @@ impl<M: EnergyModel> Assembler<M> {
     pub fn kernel_calls(&self) -> usize {
         self.terms
             .iter()
-            .map(|t| self.value_sets[t.value_set].1.iter().map(|v| v.weights.len()).sum::<usize>())
+            .map(|t| {
+                self.value_sets[t.value_set]
+                    .1
+                    .iter()
+                    .map(|v| v.weights.len())
+                    .sum::<usize>()
+            })
             .sum()
     }
 
@@ -220,7 +225,8 @@ impl<M: EnergyModel> Assembler<M> {
         for (i, entry) in term.jet.iter().enumerate() {
             let mut acc = S::zero();
             for k in 0..QUAD8_NODES {
-                acc = acc + local[k * nf + entry.field] * shape_weight(values, q, k, entry.derivative);
+                acc = acc
+                    + local[k * nf + entry.field] * shape_weight(values, q, k, entry.derivative);
             }
             jet[i] = acc;
         }
@@ -316,8 +322,7 @@ impl<M: EnergyModel> Assembler<M> {
                                 let v = h * (bi * bj);
                                 element[row * m_local + col] = element[row * m_local + col] + v;
                                 if i != j {
-                                    element[col * m_local + row] =
-                                        element[col * m_local + row] + v;
+                                    element[col * m_local + row] = element[col * m_local + row] + v;
                                 }
                             }
                         }

@@ -40,7 +40,9 @@ pub enum DofError {
         count: usize,
     },
     /// Two conditions prescribe different values at one dof (e.g. at a corner).
-    #[error("conflicting boundary values for field {field} at node {node}: ({a0} + λ {a1}) vs ({b0} + λ {b1})")]
+    #[error(
+        "conflicting boundary values for field {field} at node {node}: ({a0} + λ {a1}) vs ({b0} + λ {b1})"
+    )]
     Conflict {
         /// Node index.
         node: usize,
@@ -96,10 +98,12 @@ impl DofMap {
                     count: field_count,
                 });
             }
-            let nodes = mesh.edge_nodes(&c.edge).ok_or_else(|| DofError::UnknownEdge {
-                edge: c.edge.clone(),
-                available: mesh.edge_names().join(", "),
-            })?;
+            let nodes = mesh
+                .edge_nodes(&c.edge)
+                .ok_or_else(|| DofError::UnknownEdge {
+                    edge: c.edge.clone(),
+                    available: mesh.edge_names().join(", "),
+                })?;
             for node in nodes {
                 let g = node * field_count + c.field;
                 let new = (c.value, c.value_per_load);

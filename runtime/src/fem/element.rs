@@ -131,7 +131,9 @@ pub struct ElementValues {
 
 /// Error of the isoparametric map.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("element {element}: non-positive Jacobian determinant {determinant:e} at a quadrature point (inverted or degenerate element)")]
+#[error(
+    "element {element}: non-positive Jacobian determinant {determinant:e} at a quadrature point (inverted or degenerate element)"
+)]
 pub struct JacobianError {
     /// Element index.
     pub element: usize,
@@ -205,12 +207,7 @@ pub fn quadratic_line_rule() -> Vec<([f64; 3], f64)> {
     let (x, w) = GaussRule::line(3);
     x.iter()
         .zip(w.iter())
-        .map(|(&s, &wt)| {
-            (
-                [0.5 * s * (s - 1.0), 0.5 * s * (s + 1.0), 1.0 - s * s],
-                wt,
-            )
-        })
+        .map(|(&s, &wt)| ([0.5 * s * (s - 1.0), 0.5 * s * (s + 1.0), 1.0 - s * s], wt))
         .collect()
 }
 
@@ -241,8 +238,14 @@ mod tests {
     fn quad8_gradients_match_finite_differences() {
         let (xi, eta, h) = (0.37, -0.21, 1e-6);
         let g = Quad8::shape_reference_gradients(xi, eta);
-        let (p, m) = (Quad8::shape_values(xi + h, eta), Quad8::shape_values(xi - h, eta));
-        let (pe, me) = (Quad8::shape_values(xi, eta + h), Quad8::shape_values(xi, eta - h));
+        let (p, m) = (
+            Quad8::shape_values(xi + h, eta),
+            Quad8::shape_values(xi - h, eta),
+        );
+        let (pe, me) = (
+            Quad8::shape_values(xi, eta + h),
+            Quad8::shape_values(xi, eta - h),
+        );
         for i in 0..8 {
             assert!((g[i][0] - (p[i] - m[i]) / (2.0 * h)).abs() < 1e-9);
             assert!((g[i][1] - (pe[i] - me[i]) / (2.0 * h)).abs() < 1e-9);

@@ -3,7 +3,7 @@
 //! The discrete external force is $`F(\lambda) = F_0 + \lambda F_1`$ over the free dofs.
 
 use super::dofs::DofMap;
-use super::element::{quadratic_line_rule, ElementValues, GaussRule};
+use super::element::{ElementValues, GaussRule, quadratic_line_rule};
 use super::mesh::Mesh;
 
 /// A traction (force per unit length, N/mm) on a named edge, acting on two fields
@@ -62,7 +62,11 @@ impl LoadVectors {
                 .edges
                 .get(&t.edge)
                 .ok_or_else(|| UnknownEdgeError(t.edge.clone()))?;
-            let target = if t.proportional { &mut proportional } else { &mut fixed };
+            let target = if t.proportional {
+                &mut proportional
+            } else {
+                &mut fixed
+            };
             for seg in segments {
                 let x: Vec<[f64; 2]> = seg.iter().map(|&n| mesh.nodes[n]).collect();
                 for (n, w) in &rule {
@@ -90,7 +94,11 @@ impl LoadVectors {
                 let values = ElementValues::new(e, &mesh.element_coordinates(e), &rule, false)
                     .expect("mesh elements were checked when the assembler was built");
                 for b in body_loads {
-                    let target = if b.proportional { &mut proportional } else { &mut fixed };
+                    let target = if b.proportional {
+                        &mut proportional
+                    } else {
+                        &mut fixed
+                    };
                     for q in 0..values.weights.len() {
                         for (k, &node) in mesh.elements[e].iter().enumerate() {
                             if let Some(i) = dofs.free(node, b.field) {

@@ -119,22 +119,38 @@ impl Mesh {
         let mut edges = BTreeMap::new();
         edges.insert(
             "bottom".to_string(),
-            (0..nx).map(|e| [at(2 * e, 0), at(2 * e + 2, 0), at(2 * e + 1, 0)]).collect(),
+            (0..nx)
+                .map(|e| [at(2 * e, 0), at(2 * e + 2, 0), at(2 * e + 1, 0)])
+                .collect(),
         );
         edges.insert(
             "top".to_string(),
             (0..nx)
-                .map(|e| [at(2 * e, gy - 1), at(2 * e + 2, gy - 1), at(2 * e + 1, gy - 1)])
+                .map(|e| {
+                    [
+                        at(2 * e, gy - 1),
+                        at(2 * e + 2, gy - 1),
+                        at(2 * e + 1, gy - 1),
+                    ]
+                })
                 .collect(),
         );
         edges.insert(
             "left".to_string(),
-            (0..ny).map(|e| [at(0, 2 * e), at(0, 2 * e + 2), at(0, 2 * e + 1)]).collect(),
+            (0..ny)
+                .map(|e| [at(0, 2 * e), at(0, 2 * e + 2), at(0, 2 * e + 1)])
+                .collect(),
         );
         edges.insert(
             "right".to_string(),
             (0..ny)
-                .map(|e| [at(gx - 1, 2 * e), at(gx - 1, 2 * e + 2), at(gx - 1, 2 * e + 1)])
+                .map(|e| {
+                    [
+                        at(gx - 1, 2 * e),
+                        at(gx - 1, 2 * e + 2),
+                        at(gx - 1, 2 * e + 1),
+                    ]
+                })
                 .collect(),
         );
         let mut mesh = Mesh {
@@ -180,7 +196,11 @@ impl Mesh {
 
     /// Names of the edge and point sets.
     pub fn edge_names(&self) -> Vec<&str> {
-        self.edges.keys().chain(self.points.keys()).map(String::as_str).collect()
+        self.edges
+            .keys()
+            .chain(self.points.keys())
+            .map(String::as_str)
+            .collect()
     }
 
     /// The node nearest to a point.
@@ -244,7 +264,12 @@ impl Mesh {
         use super::element::Quad8;
         let tolerance = 1e-10;
         for (e, nodes) in self.elements.iter().enumerate() {
-            let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+            let (mut x0, mut x1, mut y0, mut y1) = (
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+            );
             for &n in nodes {
                 let [x, y] = self.nodes[n];
                 x0 = x0.min(x);
@@ -253,7 +278,11 @@ impl Mesh {
                 y1 = y1.max(y);
             }
             let slack = tolerance * ((x1 - x0) + (y1 - y0));
-            if point[0] < x0 - slack || point[0] > x1 + slack || point[1] < y0 - slack || point[1] > y1 + slack {
+            if point[0] < x0 - slack
+                || point[0] > x1 + slack
+                || point[1] < y0 - slack
+                || point[1] > y1 + slack
+            {
                 continue;
             }
             let coordinates = self.element_coordinates(e);
@@ -295,7 +324,13 @@ impl Mesh {
 
     /// Value at `point` of a nodal field stored node-major with `field_count` fields per node
     /// (`values[node * field_count + field]`). `None` outside the mesh.
-    pub fn interpolate(&self, values: &[f64], field_count: usize, field: usize, point: [f64; 2]) -> Option<f64> {
+    pub fn interpolate(
+        &self,
+        values: &[f64],
+        field_count: usize,
+        field: usize,
+        point: [f64; 2],
+    ) -> Option<f64> {
         let (e, [xi, eta]) = self.locate(point)?;
         let n = super::element::Quad8::shape_values(xi, eta);
         Some(
@@ -309,7 +344,12 @@ impl Mesh {
 
     /// Bounding box `[x0, x1, y0, y1]`.
     pub fn bounds(&self) -> [f64; 4] {
-        let mut b = [f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY];
+        let mut b = [
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ];
         for [x, y] in &self.nodes {
             b[0] = b[0].min(*x);
             b[1] = b[1].max(*x);
@@ -329,7 +369,13 @@ mod locate_tests {
         let mesh = Mesh::rectangle(4.0, 3.0, 5, 4, 3.0).unwrap();
         let f = |x: f64, y: f64| 1.0 + x - 2.0 * y + 0.3 * x * x - 0.2 * x * y + 0.1 * y * y;
         let values: Vec<f64> = mesh.nodes.iter().map(|p| f(p[0], p[1])).collect();
-        for p in [[0.0, 0.0], [4.0, 3.0], [1.234, 2.5], [2.0, 1.5], [3.99, 0.01]] {
+        for p in [
+            [0.0, 0.0],
+            [4.0, 3.0],
+            [1.234, 2.5],
+            [2.0, 1.5],
+            [3.99, 0.01],
+        ] {
             let v = mesh.interpolate(&values, 1, 0, p).unwrap();
             assert!((v - f(p[0], p[1])).abs() < 1e-12, "{p:?}");
         }

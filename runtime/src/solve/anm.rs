@@ -29,7 +29,9 @@ use crate::linear::factor::SparseFactorization;
 use crate::linear::pattern::SparseMatrix;
 use crate::model::EnergyModel;
 use crate::problem::Problem;
-use crate::series::{MAX_SERIES_LEN, PadeApproximant, PathSeries, Series, geometric_ratio, series_step_length};
+use crate::series::{
+    MAX_SERIES_LEN, PadeApproximant, PathSeries, Series, geometric_ratio, series_step_length,
+};
 use std::time::Instant;
 
 /// Relative agreement of two successive bifurcation predictions for the later one to be trusted.
@@ -124,11 +126,15 @@ pub fn compute_series<M: EnergyModel>(
         .collect();
     factor
         .solve_in_place(&mut u_hat)
-        .map_err(SolveError::linear(format!("ANM order 1 at load {:.6e}", state.load)))?;
+        .map_err(SolveError::linear(format!(
+            "ANM order 1 at load {:.6e}",
+            state.load
+        )))?;
     let norm2: f64 = u_hat.iter().map(|v| v * v).sum();
     let mut lambda1 = 1.0 / (1.0 + norm2).sqrt();
     if let Some((u_prev, l_prev)) = previous_direction {
-        let dot: f64 = u_hat.iter().zip(u_prev).map(|(a, b)| a * b).sum::<f64>() * lambda1 + lambda1 * l_prev;
+        let dot: f64 =
+            u_hat.iter().zip(u_prev).map(|(a, b)| a * b).sum::<f64>() * lambda1 + lambda1 * l_prev;
         if dot < 0.0 {
             lambda1 = -lambda1;
         }
@@ -154,15 +160,25 @@ pub fn compute_series<M: EnergyModel>(
         let mut rhs: Vec<f64> = residual.iter().map(|r| -r.coefficient(k)).collect();
         if rhs.iter().any(|v| !v.is_finite()) {
             return Err(SolveError::NonFinite {
-                location: format!("ANM right-hand side of order {k} at load {:.6e}", state.load),
+                location: format!(
+                    "ANM right-hand side of order {k} at load {:.6e}",
+                    state.load
+                ),
             });
         }
         factor
             .solve_in_place(&mut rhs)
-            .map_err(SolveError::linear(format!("ANM order {k} at load {:.6e}", state.load)))?;
+            .map_err(SolveError::linear(format!(
+                "ANM order {k} at load {:.6e}",
+                state.load
+            )))?;
         let dot: f64 = rhs.iter().zip(&displacement[1]).map(|(a, b)| a * b).sum();
         let lambda_k = -lambda1 * dot;
-        let u_k: Vec<f64> = rhs.iter().zip(&u_hat).map(|(r, h)| r + lambda_k * h).collect();
+        let u_k: Vec<f64> = rhs
+            .iter()
+            .zip(&u_hat)
+            .map(|(r, h)| r + lambda_k * h)
+            .collect();
         displacement.push(u_k);
         load.push(lambda_k);
     }
@@ -242,10 +258,11 @@ pub fn follow_path_anm<M: EnergyModel>(
 
         let t = Instant::now();
         let direction = previous.as_ref().map(|(u, l)| (u.as_slice(), *l));
-        let (series, u_hat) = match compute_series(problem, &state, factor, options.order, direction) {
-            Ok(s) => s,
-            Err(e) => return finish(state, statistics, PathStop::Failed(e), bifurcation),
-        };
+        let (series, u_hat) =
+            match compute_series(problem, &state, factor, options.order, direction) {
+                Ok(s) => s,
+                Err(e) => return finish(state, statistics, PathStop::Failed(e), bifurcation),
+            };
         statistics.series_assemblies += series.order() - 1;
         statistics.series_seconds += t.elapsed().as_secs_f64();
 
@@ -265,7 +282,9 @@ pub fn follow_path_anm<M: EnergyModel>(
         } else {
             None
         };
-        let pade_length = pade.as_ref().map(|p| p.pade_step_length(options.series_tolerance));
+        let pade_length = pade
+            .as_ref()
+            .map(|p| p.pade_step_length(options.series_tolerance));
         let mut a = match pade_length {
             Some(l) if l.is_finite() && l > plain => l,
             _ => plain,
@@ -275,7 +294,11 @@ pub fn follow_path_anm<M: EnergyModel>(
             evaluate(&series, if use_pade { pade.as_ref() } else { None }, a)
         };
         if !a.is_finite() {
-            a = if options.max_step_length.is_finite() { options.max_step_length } else { 1.0 };
+            a = if options.max_step_length.is_finite() {
+                options.max_step_length
+            } else {
+                1.0
+            };
         }
         a = a.min(options.max_step_length);
         let mut hit_max_load = false;
@@ -288,7 +311,11 @@ pub fn follow_path_anm<M: EnergyModel>(
                 let (mut lo, mut hi) = (0.0, a);
                 for _ in 0..60 {
                     let mid = 0.5 * (lo + hi);
-                    if evaluator(mid).load < max_load { lo = mid } else { hi = mid }
+                    if evaluator(mid).load < max_load {
+                        lo = mid
+                    } else {
+                        hi = mid
+                    }
                 }
                 a = hi;
                 hit_max_load = true;

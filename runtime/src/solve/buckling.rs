@@ -66,9 +66,9 @@ pub fn linear_buckling<M: EnergyModel>(
     let mut a = problem.new_matrix();
     let pre = newton(problem, vec![0.0; n], load, factor, &mut a, &options.newton)?;
     problem.tangent_into(&pre.solution, load, &mut a);
-    factor
-        .factorize(&a)
-        .map_err(SolveError::linear("linear buckling: factorisation of the pre-buckling tangent"))?;
+    factor.factorize(&a).map_err(SolveError::linear(
+        "linear buckling: factorisation of the pre-buckling tangent",
+    ))?;
     let mut rate = problem.load_derivative(&pre.solution, load);
     for r in rate.iter_mut() {
         *r = -*r;
@@ -86,7 +86,11 @@ pub fn linear_buckling<M: EnergyModel>(
     let solution = smallest_positive_buckling(&a, factor, &b, &options.eigen)
         .map_err(SolveError::linear("linear buckling: eigen-solver"))?;
     Ok(LinearBuckling {
-        critical_loads: solution.modes.iter().map(|m| load + m.load_factor).collect(),
+        critical_loads: solution
+            .modes
+            .iter()
+            .map(|m| load + m.load_factor)
+            .collect(),
         residuals: solution.modes.iter().map(|m| m.residual).collect(),
         modes: solution.modes.into_iter().map(|m| m.vector).collect(),
         prebuckling: pre.solution,

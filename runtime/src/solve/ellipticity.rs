@@ -38,7 +38,10 @@ pub struct EllipticityReport {
 const MAX_GRADIENT_FIELDS: usize = 8;
 
 /// Smallest LDLᵀ pivot of the leading `m × m` block (destroyed) and its index.
-fn smallest_pivot(a: &mut [[f64; MAX_GRADIENT_FIELDS]; MAX_GRADIENT_FIELDS], m: usize) -> (f64, usize) {
+fn smallest_pivot(
+    a: &mut [[f64; MAX_GRADIENT_FIELDS]; MAX_GRADIENT_FIELDS],
+    m: usize,
+) -> (f64, usize) {
     let mut smallest = (f64::INFINITY, 0);
     for k in 0..m {
         let d = a[k][k];
@@ -96,7 +99,11 @@ pub fn legendre_hadamard<M: EnergyModel>(
         return report;
     }
     let slot = |field: usize| gradient_fields.iter().position(|&f| f == field);
-    let mut hessians: Vec<Vec<f64>> = spec.terms.iter().map(|t| vec![0.0; t.tangent_pattern.len()]).collect();
+    let mut hessians: Vec<Vec<f64>> = spec
+        .terms
+        .iter()
+        .map(|t| vec![0.0; t.tangent_pattern.len()])
+        .collect();
     for e in 0..mesh.elements.len() {
         let Ok(values) = ElementValues::new(e, &mesh.element_coordinates(e), &rule, true) else {
             continue;
@@ -133,9 +140,12 @@ pub fn legendre_hadamard<M: EnergyModel>(
                         Derivative::Y => Some(1),
                         Derivative::Value => None,
                     };
-                    if let (Some(ai), Some(aj), Some(si), Some(sj)) =
-                        (axis(ei.derivative), axis(ej.derivative), slot(ei.field), slot(ej.field))
-                    {
+                    if let (Some(ai), Some(aj), Some(si), Some(sj)) = (
+                        axis(ei.derivative),
+                        axis(ej.derivative),
+                        slot(ei.field),
+                        slot(ej.field),
+                    ) {
                         let (r, c) = (2 * si + ai, 2 * sj + aj);
                         h[r * 2 * m + c] += hessians[t][p];
                         if r != c {

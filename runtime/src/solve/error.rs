@@ -15,7 +15,9 @@ pub enum SolveError {
         source: LinearError,
     },
     /// Newton did not reach the tolerance.
-    #[error("Newton at load {load:.6e}: no convergence after {iterations} iterations (relative residual {residual:.3e}, tolerance {tolerance:.1e})")]
+    #[error(
+        "Newton at load {load:.6e}: no convergence after {iterations} iterations (relative residual {residual:.3e}, tolerance {tolerance:.1e})"
+    )]
     NewtonDiverged {
         /// Load parameter.
         load: f64,

@@ -6,7 +6,7 @@ pub mod error;
 pub mod newton;
 
 pub use error::SolveError;
+pub mod anm;
 pub mod ellipticity;
 pub mod path;
-pub mod anm;
 pub mod riks;

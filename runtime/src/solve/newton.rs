@@ -65,9 +65,11 @@ pub fn newton<M: EnergyModel>(
             });
         }
         problem.tangent_into(&u, load, matrix);
-        factor.factorize(matrix).map_err(SolveError::linear(format!(
-            "Newton at load {load:.6e}, iteration {iterations}: tangent factorisation"
-        )))?;
+        factor
+            .factorize(matrix)
+            .map_err(SolveError::linear(format!(
+                "Newton at load {load:.6e}, iteration {iterations}: tangent factorisation"
+            )))?;
         for r in residual.iter_mut() {
             *r = -*r;
         }
