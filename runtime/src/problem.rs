@@ -163,11 +163,45 @@ impl<M: EnergyModel> Problem<M> {
         if s > 0.0 { s } else { 1.0 }
     }
 
-    /// $`\|R(U,\lambda)\|`$ relative to [`Self::residual_scale`].
+    /// Field-balanced relative residual: $`\max_f \|R_f\| / s_f`$ over the fields $`f`$, with
+    /// $`s_f`$ the norm over that field's free dofs of the element force magnitudes
+    /// $`\sum_e|f^e_a|`$ plus the external force. Each field is measured against its own forces,
+    /// so a small field (the envelope next to membrane forces) is held to the same relative
+    /// accuracy. Each $`s_f`$ is floored at [`FIELD_SCALE_FLOOR`] times the largest field scale
+    /// (a field whose forces vanish, such as $`u`$ when $`N_X = 0`$, is otherwise measured against
+    /// round-off), and [`Self::residual_scale`] is used when every scale vanishes.
     pub fn relative_residual(&self, free: &[f64], load: f64) -> f64 {
-        norm(&self.residual(free, load)) / self.residual_scale(load)
+        self.relative_residual_of(free, load, &self.residual(free, load))
+    }
+
+    /// [`Self::relative_residual`] for an already computed residual $`R(U,\lambda)`$.
+    pub fn relative_residual_of(&self, free: &[f64], load: f64, residual: &[f64]) -> f64 {
+        let dofs = self.assembler.dofs();
+        let global = dofs.expand(free, load);
+        let magnitudes = self.assembler.internal_force_magnitudes(&global);
+        let nf = dofs.field_count;
+        let mut residual_norm = vec![0.0; nf];
+        let mut scale = vec![0.0; nf];
+        for i in 0..residual.len() {
+            let f = dofs.global_of_free(i) % nf;
+            let external = (self.loads.fixed[i] + load * self.loads.proportional[i]).abs();
+            residual_norm[f] += residual[i] * residual[i];
+            scale[f] += (magnitudes[i] + external).powi(2);
+        }
+        let largest = scale.iter().cloned().fold(0.0, f64::max).sqrt();
+        let floor = if largest > 0.0 {
+            FIELD_SCALE_FLOOR * largest
+        } else {
+            self.residual_scale(load)
+        };
+        (0..nf)
+            .map(|f| residual_norm[f].sqrt() / scale[f].sqrt().max(floor))
+            .fold(0.0, f64::max)
     }
 }
+
+/// Relative floor of the per-field residual scales in [`Problem::relative_residual`].
+pub const FIELD_SCALE_FLOOR: f64 = 1e-6;
 
 /// Euclidean norm.
 pub fn norm(v: &[f64]) -> f64 {

@@ -249,37 +249,62 @@ impl<M: EnergyModel> Assembler<M> {
         total[0]
     }
 
-    /// Internal forces $`\partial\Pi/\partial U_a`$ over the free dofs, from global nodal values
-    /// (prescribed entries included in `global`).
-    pub fn internal_forces<S: Scalar>(&self, global: &[S]) -> Vec<S> {
+    /// Internal force vector of element `e` (local dofs `k * field_count + f`).
+    #[inline]
+    fn element_internal_forces<S: Scalar>(
+        &self,
+        e: usize,
+        global: &[S],
+    ) -> [S; QUAD8_NODES * MAX_FIELDS] {
         let nf = self.dofs.field_count;
-        self.accumulate(self.dofs.free_count, |e, out: &mut [S]| {
-            let local = self.gather(e, global);
-            let mut element = [S::zero(); QUAD8_NODES * MAX_FIELDS];
-            let mut jet = [S::zero(); MAX_JET];
-            let mut residual = [S::zero(); MAX_JET];
-            for (t, term) in self.terms.iter().enumerate() {
-                let values = &self.value_sets[term.value_set].1[e];
-                let m = term.jet.len();
-                for q in 0..values.weights.len() {
-                    self.jet_at(term, values, q, &local, &mut jet[..m]);
-                    self.model.residual(t, &jet[..m], &mut residual[..m]);
-                    let w = values.weights[q];
-                    for (i, entry) in term.jet.iter().enumerate() {
-                        let r = residual[i];
-                        for k in 0..QUAD8_NODES {
-                            let b = shape_weight(values, q, k, entry.derivative);
-                            if b != 0.0 {
-                                let a = k * nf + entry.field;
-                                element[a] = element[a] + r * (b * w);
-                            }
+        let local = self.gather(e, global);
+        let mut element = [S::zero(); QUAD8_NODES * MAX_FIELDS];
+        let mut jet = [S::zero(); MAX_JET];
+        let mut residual = [S::zero(); MAX_JET];
+        for (t, term) in self.terms.iter().enumerate() {
+            let values = &self.value_sets[term.value_set].1[e];
+            let m = term.jet.len();
+            for q in 0..values.weights.len() {
+                self.jet_at(term, values, q, &local, &mut jet[..m]);
+                self.model.residual(t, &jet[..m], &mut residual[..m]);
+                let w = values.weights[q];
+                for (i, entry) in term.jet.iter().enumerate() {
+                    let r = residual[i];
+                    for k in 0..QUAD8_NODES {
+                        let b = shape_weight(values, q, k, entry.derivative);
+                        if b != 0.0 {
+                            let a = k * nf + entry.field;
+                            element[a] = element[a] + r * (b * w);
                         }
                     }
                 }
             }
+        }
+        element
+    }
+
+    /// Internal forces $`\partial\Pi/\partial U_a`$ over the free dofs, from global nodal values
+    /// (prescribed entries included in `global`).
+    pub fn internal_forces<S: Scalar>(&self, global: &[S]) -> Vec<S> {
+        self.accumulate(self.dofs.free_count, |e, out: &mut [S]| {
+            let element = self.element_internal_forces(e, global);
             for (a, dof) in self.element_dofs[e].iter().enumerate() {
                 if let Some(i) = dof {
                     out[*i] = out[*i] + element[a];
+                }
+            }
+        })
+    }
+
+    /// Force magnitudes $`\sum_e |f^e_a|`$ over the free dofs: the size of the element forces
+    /// that meet at each dof, a per-dof scale for residuals (large where forces cancel at
+    /// equilibrium, unlike the assembled internal force).
+    pub fn internal_force_magnitudes(&self, global: &[f64]) -> Vec<f64> {
+        self.accumulate(self.dofs.free_count, |e, out: &mut [f64]| {
+            let element = self.element_internal_forces(e, global);
+            for (a, dof) in self.element_dofs[e].iter().enumerate() {
+                if let Some(i) = dof {
+                    out[*i] += element[a].abs();
                 }
             }
         })

@@ -12,8 +12,9 @@
 //!   $`\lambda_n = -\lambda_1\langle\hat U_n, U_1\rangle`$ and $`U_n = \lambda_n\hat U + \hat U_n`$.
 //!
 //! Step length $`a_{\max} = (\epsilon\|U_1\|/\|U_N\|)^{1/(N-1)}`$ or, optionally, the Padé
-//! approximants' longer range. The residual is checked at the end of every step; a Newton
-//! correction brings it back under the tolerance when needed (or the step is halved).
+//! approximants' longer range. The residual is checked at the end of every step; a Riks
+//! (arc-length) correction brings it back under the tolerance when needed (or the step is
+//! halved).
 //!
 //! Bifurcations: at every step start the solver predicts the nearest bifurcation load by linear
 //! buckling about the current point along the path tangent (one shift-invert eigen-solve with
@@ -22,8 +23,9 @@
 //! reported, with the last trusted prediction as its load, at the step whose end passes it.
 
 use super::error::SolveError;
-use super::newton::{NewtonOptions, newton};
+use super::newton::NewtonOptions;
 use super::path::{PathControl, PathEvent, PathResult, PathState, PathStatistics, PathStop};
+use super::riks::{ArcLengthConstraint, RiksOptions, correct_on_arc};
 use crate::linear::eigen::{BucklingOptions, smallest_positive_buckling};
 use crate::linear::factor::SparseFactorization;
 use crate::linear::pattern::SparseMatrix;
@@ -54,7 +56,8 @@ pub struct AnmOptions {
     pub pade: bool,
     /// Points evaluated inside each step (dense output).
     pub interior_points: usize,
-    /// Newton settings of the corrector.
+    /// Iteration cap of the corrector (a Riks correction on the arc through the step's end
+    /// point, to `residual_tolerance / 100`); its tolerance field is not used.
     pub corrector: NewtonOptions,
     /// Predict the bifurcation load from each step's tangent (one shift-invert eigen-solve per
     /// step with the already factorised tangent).
@@ -330,32 +333,23 @@ pub fn follow_path_anm<M: EnergyModel>(
             if residual.is_finite() && residual <= options.residual_tolerance {
                 break (candidate, residual, 0);
             }
+            // Riks corrector on the arc through the predicted point (works through limit points).
             let corrected = if residual.is_finite() {
-                newton(
-                    problem,
-                    candidate.displacement.clone(),
-                    candidate.load,
-                    factor,
-                    &mut matrix,
-                    &options.corrector,
-                )
-                .ok()
+                let riks = RiksOptions {
+                    tolerance: options.residual_tolerance * 1e-2,
+                    max_iterations: options.corrector.max_iterations,
+                    load_scale: 1.0,
+                    constraint: ArcLengthConstraint::Linearized,
+                    ..RiksOptions::default()
+                };
+                correct_on_arc(problem, factor, &state, &candidate, &riks, &mut statistics).ok()
             } else {
                 None
             };
             if let Some(c) = corrected {
-                statistics.factorizations += c.iterations;
-                statistics.tangent_assemblies += c.iterations;
                 statistics.corrections += 1;
                 if c.relative_residual <= options.residual_tolerance {
-                    break (
-                        PathState {
-                            displacement: c.solution,
-                            load: candidate.load,
-                        },
-                        c.relative_residual,
-                        c.iterations,
-                    );
+                    break (c.state, c.relative_residual, c.iterations);
                 }
             }
             statistics.rejected_steps += 1;
@@ -366,20 +360,24 @@ pub fn follow_path_anm<M: EnergyModel>(
                 let error = SolveError::Path {
                     load: state.load,
                     message: format!(
-                        "step {step}: residual {residual:.3e} above tolerance {:.1e} even after 12 halvings and Newton corrections",
+                        "step {step}: residual {residual:.3e} above tolerance {:.1e} even after 12 halvings and arc-length corrections",
                         options.residual_tolerance
                     ),
                 };
                 return finish(state, statistics, PathStop::Failed(error), bifurcation);
             }
         };
-        // If the end point was corrected, the interior points still come from the series
-        // (their residual is reported as computed).
+        // Interior points come from the series (their residual is computed and reported).
         for k in 1..=options.interior_points {
             let s = a * k as f64 / (options.interior_points + 1) as f64;
             let inner = evaluator(s);
             let residual = problem.relative_residual(&inner.displacement, inner.load);
             statistics.residual_assemblies += 1;
+            if residual.is_nan() || residual > options.residual_tolerance {
+                // Only points that meet the tolerance are accepted (possible near the end of a
+                // step whose end point needed a correction).
+                continue;
+            }
             let control = observer(&PathEvent {
                 step,
                 interior: true,

@@ -4,12 +4,12 @@ use super::error::SolveError;
 use crate::linear::factor::SparseFactorization;
 use crate::linear::pattern::SparseMatrix;
 use crate::model::EnergyModel;
-use crate::problem::{Problem, norm};
+use crate::problem::Problem;
 
 /// Settings of [`newton`].
 #[derive(Clone, Copy, Debug)]
 pub struct NewtonOptions {
-    /// Accept when $`\|R\| \le`$ `tolerance` × [`Problem::residual_scale`].
+    /// Accept when the field-balanced [`Problem::relative_residual`] $`\le`$ `tolerance`.
     pub tolerance: f64,
     /// Iteration cap.
     pub max_iterations: usize,
@@ -18,7 +18,7 @@ pub struct NewtonOptions {
 impl Default for NewtonOptions {
     fn default() -> Self {
         NewtonOptions {
-            tolerance: 1e-10,
+            tolerance: 1e-8,
             max_iterations: 25,
         }
     }
@@ -45,10 +45,9 @@ pub fn newton<M: EnergyModel>(
     matrix: &mut SparseMatrix,
     options: &NewtonOptions,
 ) -> Result<NewtonSolution, SolveError> {
-    let scale = problem.residual_scale(load);
     let mut u = initial;
     let mut residual = problem.residual(&u, load);
-    let mut relative = norm(&residual) / scale;
+    let mut relative = problem.relative_residual_of(&u, load, &residual);
     let mut iterations = 0;
     while relative > options.tolerance {
         if !relative.is_finite() {
@@ -81,7 +80,7 @@ pub fn newton<M: EnergyModel>(
         }
         iterations += 1;
         residual = problem.residual(&u, load);
-        relative = norm(&residual) / scale;
+        relative = problem.relative_residual_of(&u, load, &residual);
     }
     Ok(NewtonSolution {
         solution: u,

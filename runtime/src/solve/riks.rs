@@ -33,7 +33,7 @@ use crate::linear::LinearError;
 use crate::linear::factor::SparseFactorization;
 use crate::linear::pattern::SparseMatrix;
 use crate::model::EnergyModel;
-use crate::problem::{Problem, norm};
+use crate::problem::Problem;
 
 /// Which arc-length equation the corrector enforces.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -220,9 +220,10 @@ impl<M: EnergyModel> Linearization<'_, M> {
     /// $`(R, \|R\|/\text{scale})`$ at a point.
     fn residual(&mut self, displacement: &[f64], load: f64) -> (Vec<f64>, f64) {
         let residual = self.problem.residual(displacement, load);
-        let scale = self.problem.residual_scale(load);
+        let relative = self
+            .problem
+            .relative_residual_of(displacement, load, &residual);
         self.statistics.residual_assemblies += 2;
-        let relative = norm(&residual) / scale;
         (residual, relative)
     }
 }
@@ -636,5 +637,87 @@ fn spherical_root(
         Ok(chosen)
     } else {
         Err("degenerate spherical arc-length constraint".into())
+    }
+}
+
+/// Result of [`correct_on_arc`].
+#[derive(Clone, Debug)]
+pub struct ArcCorrection {
+    /// The corrected equilibrium point.
+    pub state: PathState,
+    /// Newton iterations (= tangent factorisations) used.
+    pub iterations: usize,
+    /// Relative residual reached.
+    pub relative_residual: f64,
+}
+
+/// Riks corrector for a predicted point, e.g. the end of an ANM step: Newton on the bordered
+/// system with the arc-length constraint (of radius $`\|(\Delta U, \psi\Delta\lambda)\|`$ about
+/// `origin`) passing through `predicted`. Unlike Newton at fixed load it converges through limit
+/// points. `options` supplies the tolerance, iteration cap, load scale $`\psi`$ and constraint;
+/// the work done is added to `statistics`.
+pub fn correct_on_arc<M: EnergyModel>(
+    problem: &Problem<M>,
+    factor: &mut SparseFactorization,
+    origin: &PathState,
+    predicted: &PathState,
+    options: &RiksOptions,
+    statistics: &mut PathStatistics,
+) -> Result<ArcCorrection, SolveError> {
+    let increment: Vec<f64> = predicted
+        .displacement
+        .iter()
+        .zip(&origin.displacement)
+        .map(|(p, o)| p - o)
+        .collect();
+    let load_increment = predicted.load - origin.load;
+    let arc_length = arc_dot(
+        &increment,
+        load_increment,
+        &increment,
+        load_increment,
+        options.load_scale,
+    )
+    .sqrt();
+    if !(arc_length > 0.0 && arc_length.is_finite()) {
+        return Err(SolveError::Path {
+            load: origin.load,
+            message: format!("arc-length correction: degenerate increment (length {arc_length:e})"),
+        });
+    }
+    let direction: Vec<f64> = increment.iter().map(|d| d / arc_length).collect();
+    let mut linearization = Linearization {
+        problem,
+        factor,
+        matrix: problem.new_matrix(),
+        statistics: PathStatistics::default(),
+    };
+    let result = correct(
+        &mut linearization,
+        origin,
+        &direction,
+        load_increment / arc_length,
+        arc_length,
+        options,
+    );
+    let work = &linearization.statistics;
+    statistics.factorizations += work.factorizations;
+    statistics.tangent_assemblies += work.tangent_assemblies;
+    statistics.residual_assemblies += work.residual_assemblies;
+    statistics.assembly_seconds += work.assembly_seconds;
+    statistics.factorization_seconds += work.factorization_seconds;
+    match result {
+        Ok(c) => Ok(ArcCorrection {
+            state: c.state,
+            iterations: c.iterations,
+            relative_residual: c.relative_residual,
+        }),
+        Err(failure) => Err(SolveError::Path {
+            load: predicted.load,
+            message: format!(
+                "arc-length correction: {}",
+                failure.describe(options.tolerance)
+            ),
+        }),
     }
 }
