@@ -34,7 +34,8 @@ pub struct BuckleReport {
     pub details: serde_json::Value,
 }
 
-fn unknown_model(scene: &Scene) -> Error {
+/// The scene error for a `model.name` that is not in the registry.
+pub(crate) fn unknown_model(scene: &Scene) -> Error {
     crate::setup::scene_error(
         scene,
         "model.name",

@@ -71,17 +71,8 @@ pub fn run(scene: &Scene, output_directory: &Path) -> Result<RunReport, Error> {
         directory: output_directory,
         threshold,
     };
-    with_model(&scene.model.name, visitor).unwrap_or_else(|| {
-        Err(crate::setup::scene_error(
-            scene,
-            "model.name",
-            format!(
-                "unknown model `{}` (models: {})",
-                scene.model.name,
-                wrinkle_models::names().join(", ")
-            ),
-        ))
-    })
+    with_model(&scene.model.name, visitor)
+        .unwrap_or_else(|| Err(crate::commands::unknown_model(scene)))
 }
 
 impl ModelVisitor for RunVisitor<'_> {
