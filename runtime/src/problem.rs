@@ -171,14 +171,17 @@ impl<M: EnergyModel> Problem<M> {
     /// (a field whose forces vanish, such as $`u`$ when $`N_X = 0`$, is otherwise measured against
     /// round-off), and [`Self::residual_scale`] is used when every scale vanishes.
     pub fn relative_residual(&self, free: &[f64], load: f64) -> f64 {
-        self.relative_residual_of(free, load, &self.residual(free, load))
+        self.residual_with_relative(free, load).1
     }
 
-    /// [`Self::relative_residual`] for an already computed residual $`R(U,\lambda)`$.
-    pub fn relative_residual_of(&self, free: &[f64], load: f64, residual: &[f64]) -> f64 {
+    /// $`R(U,\lambda)`$ and its [`Self::relative_residual`], from one element loop.
+    pub fn residual_with_relative(&self, free: &[f64], load: f64) -> (Vec<f64>, f64) {
         let dofs = self.assembler.dofs();
         let global = dofs.expand(free, load);
-        let magnitudes = self.assembler.internal_force_magnitudes(&global);
+        let (mut residual, magnitudes) = self.assembler.internal_forces_and_magnitudes(&global);
+        for (i, r) in residual.iter_mut().enumerate() {
+            *r -= load * self.loads.proportional[i] + self.loads.fixed[i];
+        }
         let nf = dofs.field_count;
         let mut residual_norm = vec![0.0; nf];
         let mut scale = vec![0.0; nf];
@@ -194,9 +197,10 @@ impl<M: EnergyModel> Problem<M> {
         } else {
             self.residual_scale(load)
         };
-        (0..nf)
+        let relative = (0..nf)
             .map(|f| residual_norm[f].sqrt() / scale[f].sqrt().max(floor))
-            .fold(0.0, f64::max)
+            .fold(0.0, f64::max);
+        (residual, relative)
     }
 }
 

@@ -296,18 +296,23 @@ impl<M: EnergyModel> Assembler<M> {
         })
     }
 
-    /// Force magnitudes $`\sum_e |f^e_a|`$ over the free dofs: the size of the element forces
-    /// that meet at each dof, a per-dof scale for residuals (large where forces cancel at
-    /// equilibrium, unlike the assembled internal force).
-    pub fn internal_force_magnitudes(&self, global: &[f64]) -> Vec<f64> {
-        self.accumulate(self.dofs.free_count, |e, out: &mut [f64]| {
+    /// Internal forces and, in the same element loop, the force magnitudes
+    /// $`\sum_e |f^e_a|`$ over the free dofs: the size of the element forces that meet at each
+    /// dof, a per-dof scale for residuals (large where forces cancel at equilibrium, unlike the
+    /// assembled internal force).
+    pub fn internal_forces_and_magnitudes(&self, global: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        let n = self.dofs.free_count;
+        let mut both = self.accumulate(2 * n, |e, out: &mut [f64]| {
             let element = self.element_internal_forces(e, global);
             for (a, dof) in self.element_dofs[e].iter().enumerate() {
                 if let Some(i) = dof {
-                    out[*i] += element[a].abs();
+                    out[*i] += element[a];
+                    out[n + *i] += element[a].abs();
                 }
             }
-        })
+        });
+        let magnitudes = both.split_off(n);
+        (both, magnitudes)
     }
 
     /// Tangent values $`\partial^2\Pi/\partial U_a\partial U_b`$ on [`Self::pattern`], generic

@@ -46,8 +46,7 @@ pub fn newton<M: EnergyModel>(
     options: &NewtonOptions,
 ) -> Result<NewtonSolution, SolveError> {
     let mut u = initial;
-    let mut residual = problem.residual(&u, load);
-    let mut relative = problem.relative_residual_of(&u, load, &residual);
+    let (mut residual, mut relative) = problem.residual_with_relative(&u, load);
     let mut iterations = 0;
     while relative > options.tolerance {
         if !relative.is_finite() {
@@ -79,8 +78,7 @@ pub fn newton<M: EnergyModel>(
             *ui += du;
         }
         iterations += 1;
-        residual = problem.residual(&u, load);
-        relative = problem.relative_residual_of(&u, load, &residual);
+        (residual, relative) = problem.residual_with_relative(&u, load);
     }
     Ok(NewtonSolution {
         solution: u,
