@@ -13,7 +13,7 @@
 wrinkle_macros::energy_model! {
     /// Reference envelope model (Damil, Potier-Ferry & Hu 2014, eqs 22, 23, 64): real envelope, one harmonic.
     model ReferenceEnvelope as "reference-envelope" {
-        fields: u, v, w;
+        fields: u [displacement_x], v [displacement_y], w [envelope];
         parameters: young "Young's modulus E (MPa)", poisson "Poisson ratio", thickness "thickness h (mm)",
             wavenumber "wavenumber Q (1/mm)", direction "wave-vector angle from X (rad)";
         let c = cos(direction);

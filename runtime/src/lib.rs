@@ -4,7 +4,9 @@
 pub mod model;
 pub mod scalar;
 
-pub use model::{Derivative, EnergyModel, JetEntry, ModelSpec, QuadratureRule, TermSpec};
+pub use model::{
+    Derivative, EnergyModel, FieldRole, JetEntry, ModelSpec, QuadratureRule, TermSpec,
+};
 pub use scalar::Scalar;
 pub mod fem;
 pub mod linear;

@@ -11,6 +11,7 @@
 //! all generic over [`Scalar`].
 
 use crate::scalar::Scalar;
+use crate::series::Series;
 
 /// Which derivative of a field a jet entry holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -30,6 +31,61 @@ pub struct JetEntry {
     pub field: usize,
     /// Which derivative.
     pub derivative: Derivative,
+}
+
+/// What a field is. Declared in the DSL (`w [deflection]`); the application layer derives from
+/// it which boundary conditions an edge imposes on the field, how the physical deflection is
+/// reconstructed and which amplitude a path reports — never from the field's name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum FieldRole {
+    /// In-plane displacement $`u`$ along X.
+    DisplacementX,
+    /// In-plane displacement $`v`$ along Y.
+    DisplacementY,
+    /// Transverse deflection $`w`$ of a plate (THEORY.md §2).
+    Deflection,
+    /// Reissner–Mindlin rotation $`\theta_X`$, paired with $`\partial w/\partial X`$ in the
+    /// transverse shear strain $`\nabla w - \theta`$.
+    RotationX,
+    /// Reissner–Mindlin rotation $`\theta_Y`$, paired with $`\partial w/\partial Y`$.
+    RotationY,
+    /// Real envelope $`w_1`$ of the first harmonic: physical deflection
+    /// $`2 w_1 \cos(Q\,\mathbf{e}\cdot\mathbf{X})`$ (THEORY.md §3–4).
+    Envelope,
+    /// Real part $`a`$ of a complex first-harmonic envelope $`w_1 = a + i b`$ (THEORY.md §6).
+    EnvelopeReal,
+    /// Imaginary part $`b`$ of a complex first-harmonic envelope.
+    EnvelopeImaginary,
+    /// Mean (zeroth-harmonic) deflection $`w_0`$ of an envelope model.
+    MeanDeflection,
+    /// No role declared: the runtime derives nothing from the field.
+    Other,
+}
+
+impl FieldRole {
+    /// The DSL spelling (`displacement_x`, `deflection`, …).
+    pub fn name(self) -> &'static str {
+        match self {
+            FieldRole::DisplacementX => "displacement_x",
+            FieldRole::DisplacementY => "displacement_y",
+            FieldRole::Deflection => "deflection",
+            FieldRole::RotationX => "rotation_x",
+            FieldRole::RotationY => "rotation_y",
+            FieldRole::Envelope => "envelope",
+            FieldRole::EnvelopeReal => "envelope_real",
+            FieldRole::EnvelopeImaginary => "envelope_imaginary",
+            FieldRole::MeanDeflection => "mean_deflection",
+            FieldRole::Other => "other",
+        }
+    }
+    /// Whether the field is an out-of-plane quantity (a deflection, a rotation, an envelope):
+    /// clamped and simply supported plate edges constrain these, not the in-plane ones.
+    pub fn is_transverse(self) -> bool {
+        !matches!(
+            self,
+            FieldRole::DisplacementX | FieldRole::DisplacementY | FieldRole::Other
+        )
+    }
 }
 
 /// Quadrature rule a term is integrated with on the Q8 element.
@@ -55,6 +111,15 @@ pub struct TermSpec {
     /// term-local jet indices. The tangent kernel writes them in this order; the Hessian is
     /// symmetric, so $`(j, i)`$ holds the same value.
     pub tangent_pattern: &'static [(usize, usize)],
+    /// Number of tape slots per quadrature point the term's Taylor-mode kernels use
+    /// ([`EnergyModel::taylor_start`]): one per jet-dependent intermediate whose coefficient
+    /// history a recurrence reads. The default (hand-written) kernels store the jet itself, so
+    /// they need `jet.len()` slots.
+    pub taylor_slots: usize,
+    /// Whether the term's residual is linear (affine) in the jet. Its Taylor coefficients of
+    /// order $`k \ge 1`$ then vanish when the order-$`k`$ jet does, so the ANM right-hand sides
+    /// skip it and it needs no tape.
+    pub linear_residual: bool,
 }
 
 /// Everything about a model that is known at compile time.
@@ -66,6 +131,8 @@ pub struct ModelSpec {
     pub description: &'static str,
     /// Unknown fields in dof order, e.g. `["u", "v", "w"]`.
     pub fields: &'static [&'static str],
+    /// The role of each field, in [`Self::fields`] order.
+    pub field_roles: &'static [FieldRole],
     /// Runtime parameters, in the order [`EnergyModel::from_parameters`] takes them.
     pub parameters: &'static [&'static str],
     /// The model-level jet: every (field, derivative) that some term uses, sorted by field then
@@ -85,6 +152,10 @@ impl ModelSpec {
     /// Index of a field by name.
     pub fn field_index(&self, name: &str) -> Option<usize> {
         self.fields.iter().position(|f| *f == name)
+    }
+    /// Index of the field with `role`, if the model has one.
+    pub fn field_with_role(&self, role: FieldRole) -> Option<usize> {
+        self.field_roles.iter().position(|r| *r == role)
     }
     /// Whether any term needs the first derivatives of `field`.
     pub fn needs_gradient(&self, field: usize) -> bool {
@@ -119,6 +190,72 @@ pub trait EnergyModel: Clone + Send + Sync + 'static {
     /// [`TermSpec::tangent_pattern`], in that order
     /// (`out.len() == tangent_pattern.len()`).
     fn tangent<S: Scalar>(&self, term: usize, jet: &[S], out: &mut [S]);
+
+    /// Taylor mode, order 0: evaluates the term at the jet $`\mathbf{j}_0`$ (term-local, `f64`)
+    /// and records on `tape` the order-0 coefficient of every stored intermediate.
+    ///
+    /// **Tape layout**: [`TermSpec::taylor_slots`] slots of `stride` coefficients each; slot
+    /// $`s`$, order $`k`$ is `tape[s * stride + k]` (`stride` ≥ the highest order + 1).
+    ///
+    /// With the three Taylor-mode kernels the coefficients of the residual along a jet series
+    /// $`\mathbf{j}(a) = \sum_k \mathbf{j}_k a^k`$ are computed order by order, each from the
+    /// lower orders on the tape at $`O(k)`$ per product:
+    /// [`Self::taylor_predict`] gives the order-$`k`$ residual coefficient with
+    /// $`\mathbf{j}_k = 0`$ (the ANM right-hand side), [`Self::taylor_commit`] then records the
+    /// true order-$`k`$ coefficients once $`\mathbf{j}_k`$ is known — they are affine in
+    /// $`\mathbf{j}_k`$, with the slope of the order-0 derivative.
+    ///
+    /// The default implementation (for hand-written models) stores the jet history and
+    /// evaluates [`Self::residual`] on truncated [`Series`]; the code generator overrides all
+    /// three kernels with straight-line recurrences.
+    fn taylor_start(&self, _term: usize, jet: &[f64], tape: &mut [f64], stride: usize) {
+        for (i, &value) in jet.iter().enumerate() {
+            tape[i * stride] = value;
+        }
+    }
+
+    /// Taylor mode, order $`k \ge 1`$: the order-$`k`$ coefficient of the residual
+    /// $`\partial\psi_t/\partial j_i`$ for $`\mathbf{j}_k = 0`$, written to `out` (term-local,
+    /// `out.len() == jet.len()`), from orders $`0..k-1`$ on the tape; records the predicted
+    /// order-$`k`$ coefficients that [`Self::taylor_commit`] completes. See
+    /// [`Self::taylor_start`].
+    fn taylor_predict(
+        &self,
+        term: usize,
+        order: usize,
+        tape: &mut [f64],
+        stride: usize,
+        out: &mut [f64],
+    ) {
+        let m = out.len();
+        let mut jet = [Series::zeros(1); crate::fem::assembly::MAX_JET];
+        for (i, series) in jet[..m].iter_mut().enumerate() {
+            let mut coefficients = tape[i * stride..i * stride + order + 1].to_vec();
+            coefficients[order] = 0.0;
+            *series = Series::from_coefficients(&coefficients)
+                .expect("ANM orders stay below the series capacity");
+        }
+        let mut residual = [Series::zeros(1); crate::fem::assembly::MAX_JET];
+        self.residual(term, &jet[..m], &mut residual[..m]);
+        for (o, r) in out.iter_mut().zip(&residual[..m]) {
+            *o = r.coefficient(order);
+        }
+    }
+
+    /// Taylor mode, order $`k \ge 1`$, after [`Self::taylor_predict`] at the same order:
+    /// records the true order-$`k`$ coefficients for the order-$`k`$ jet `jet` (term-local).
+    fn taylor_commit(
+        &self,
+        _term: usize,
+        order: usize,
+        jet: &[f64],
+        tape: &mut [f64],
+        stride: usize,
+    ) {
+        for (i, &value) in jet.iter().enumerate() {
+            tape[i * stride + order] = value;
+        }
+    }
 
     /// Sets one parameter by name; `Err` lists the valid names.
     fn set_parameter(&mut self, name: &str, value: f64) -> Result<(), String> {

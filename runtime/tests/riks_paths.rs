@@ -15,7 +15,7 @@ use wrinkle_runtime::solve::SolveError;
 use wrinkle_runtime::solve::path::{PathControl, PathEvent, PathState, PathStop};
 use wrinkle_runtime::solve::riks::{ArcLengthConstraint, RiksOptions, follow_path_riks};
 use wrinkle_runtime::{
-    Derivative, EnergyModel, JetEntry, ModelSpec, QuadratureRule, Scalar, TermSpec,
+    Derivative, EnergyModel, FieldRole, JetEntry, ModelSpec, QuadratureRule, Scalar, TermSpec,
 };
 
 /// One field `u`, one term depending on $`\partial u/\partial X`$.
@@ -24,12 +24,15 @@ static TERMS: [TermSpec; 1] = [TermSpec {
     quadrature: QuadratureRule::Full,
     jet: &[0],
     tangent_pattern: &[(0, 0)],
+    taylor_slots: 1,
+    linear_residual: false,
 }];
 
 static SPEC: ModelSpec = ModelSpec {
     name: "test-nonlinear-spring",
     description: "1-field nonlinear spring ½kε² − ⅓bε³ + ¼cε⁴ of ε = ∂u/∂X",
     fields: &["u"],
+    field_roles: &[FieldRole::DisplacementX],
     parameters: &["k", "b", "c"],
     jet: &[JetEntry {
         field: 0,

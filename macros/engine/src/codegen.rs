@@ -14,11 +14,12 @@ use crate::graph::{ExpressionGraph, Node, NodeId};
 use crate::kernel::{CompiledModel, TermKernel};
 use crate::semantic::Derivative;
 use crate::syntax::Quadrature;
+use crate::taylor::TaylorProgram;
 
 /// An operation as emitted, after peephole recognition of subtraction, negation, division
 /// and reciprocal in the `+`/`*`/`pow` DAG.
 #[derive(Clone, Copy, Debug)]
-enum Operation {
+pub(crate) enum Operation {
     Leaf,
     Add(NodeId, NodeId),
     Subtract(NodeId, NodeId),
@@ -31,7 +32,7 @@ enum Operation {
 }
 
 impl Operation {
-    fn children(self) -> Vec<NodeId> {
+    pub(crate) fn children(self) -> Vec<NodeId> {
         match self {
             Operation::Leaf => Vec::new(),
             Operation::Add(a, b)
@@ -67,7 +68,7 @@ fn reciprocal_operand(graph: &ExpressionGraph, id: NodeId) -> Option<NodeId> {
     }
 }
 
-fn operation_of(graph: &ExpressionGraph, id: NodeId) -> Operation {
+pub(crate) fn operation_of(graph: &ExpressionGraph, id: NodeId) -> Operation {
     match graph.node(id) {
         Node::Constant(_) | Node::Parameter(_) | Node::Jet(_) => Operation::Leaf,
         Node::Add(a, b) => {
@@ -99,19 +100,19 @@ fn operation_of(graph: &ExpressionGraph, id: NodeId) -> Operation {
 }
 
 /// Emits straight-line code for a set of outputs of one term.
-struct KernelWriter<'a> {
-    graph: &'a ExpressionGraph,
-    term: &'a TermKernel,
-    parameters: &'a [Ident],
+pub(crate) struct KernelWriter<'a> {
+    pub(crate) graph: &'a ExpressionGraph,
+    pub(crate) term: &'a TermKernel,
+    pub(crate) parameters: &'a [Ident],
 }
 
 impl KernelWriter<'_> {
-    fn is_scalar(&self, id: NodeId) -> bool {
+    pub(crate) fn is_scalar(&self, id: NodeId) -> bool {
         self.graph.depends_on_jet(id)
     }
 
     /// An atomic expression naming the value of `id`.
-    fn reference(&self, id: NodeId) -> TokenStream {
+    pub(crate) fn reference(&self, id: NodeId) -> TokenStream {
         match self.graph.node(id) {
             Node::Constant(value) => real_literal(value),
             Node::Parameter(k) => {
@@ -135,7 +136,7 @@ impl KernelWriter<'_> {
     }
 
     /// `let` statements for every operation reachable from `roots`, children first.
-    fn statements(&self, roots: &[NodeId]) -> TokenStream {
+    pub(crate) fn statements(&self, roots: &[NodeId]) -> TokenStream {
         let mut visited = HashSet::new();
         let mut order = Vec::new();
         for &root in roots {
@@ -302,6 +303,10 @@ pub fn generate(compiled: &CompiledModel) -> TokenStream {
     let registry_name = &model.registry_name;
     let description = model.description();
     let field_names = &model.fields;
+    let field_roles = model.field_roles.iter().map(|role| {
+        let variant = format_ident!("{}", role.variant_name());
+        quote!(::wrinkle_runtime::FieldRole::#variant)
+    });
     let parameter_idents: Vec<Ident> = model
         .parameters
         .iter()
@@ -343,11 +348,16 @@ pub fn generate(compiled: &CompiledModel) -> TokenStream {
         };
         let jet = &term.jet;
         let pattern = term.tangent_pattern.iter().map(|(i, j)| quote!((#i, #j)));
+        let program = TaylorProgram::new(&term.graph, &term.residual, &term.jet);
+        let slots = program.slots;
+        let linear = program.is_linear();
         quote!(::wrinkle_runtime::TermSpec {
             name: #term_name,
             quadrature: ::wrinkle_runtime::QuadratureRule::#quadrature,
             jet: &[#(#jet),*],
             tangent_pattern: &[#(#pattern),*],
+            taylor_slots: #slots,
+            linear_residual: #linear,
         })
     });
     let report = &compiled.report;
@@ -355,6 +365,9 @@ pub fn generate(compiled: &CompiledModel) -> TokenStream {
     let mut energy_arms = Vec::new();
     let mut residual_arms = Vec::new();
     let mut tangent_arms = Vec::new();
+    let mut taylor_start_arms = Vec::new();
+    let mut taylor_predict_arms = Vec::new();
+    let mut taylor_commit_arms = Vec::new();
     for (index, term) in compiled.terms.iter().enumerate() {
         let writer = KernelWriter {
             graph: &term.graph,
@@ -367,6 +380,12 @@ pub fn generate(compiled: &CompiledModel) -> TokenStream {
         energy_arms.push(quote!(#index => #energy,));
         residual_arms.push(quote!(#index => #residual,));
         tangent_arms.push(quote!(#index => #tangent,));
+        let program = TaylorProgram::new(&term.graph, &term.residual, &term.jet);
+        let taylor = crate::taylor::generate(&program, &writer);
+        let (start, predict, commit) = (taylor.start, taylor.predict, taylor.commit);
+        taylor_start_arms.push(quote!(#index => #start,));
+        taylor_predict_arms.push(quote!(#index => #predict,));
+        taylor_commit_arms.push(quote!(#index => #commit,));
     }
     let escaped_name = registry_name.replace('{', "{{").replace('}', "}}");
     let missing_term =
@@ -402,6 +421,7 @@ pub fn generate(compiled: &CompiledModel) -> TokenStream {
                 name: #registry_name,
                 description: #description,
                 fields: &[#(#field_names),*],
+                field_roles: &[#(#field_roles),*],
                 parameters: &[#(#parameter_names),*],
                 jet: &[#(#jet_entries),*],
                 terms: &[#(#term_specs),*],
@@ -434,6 +454,27 @@ pub fn generate(compiled: &CompiledModel) -> TokenStream {
             fn tangent<S: ::wrinkle_runtime::Scalar>(&self, term: usize, jet: &[S], out: &mut [S]) {
                 match term {
                     #(#tangent_arms)*
+                    _ => panic!(#missing_term, term),
+                }
+            }
+
+            fn taylor_start(&self, term: usize, jet: &[f64], tape: &mut [f64], stride: usize) {
+                match term {
+                    #(#taylor_start_arms)*
+                    _ => panic!(#missing_term, term),
+                }
+            }
+
+            fn taylor_predict(&self, term: usize, order: usize, tape: &mut [f64], stride: usize, out: &mut [f64]) {
+                match term {
+                    #(#taylor_predict_arms)*
+                    _ => panic!(#missing_term, term),
+                }
+            }
+
+            fn taylor_commit(&self, term: usize, order: usize, jet: &[f64], tape: &mut [f64], stride: usize) {
+                match term {
+                    #(#taylor_commit_arms)*
                     _ => panic!(#missing_term, term),
                 }
             }

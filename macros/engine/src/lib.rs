@@ -11,7 +11,9 @@
 //!    tangent $`k_{ij} = \partial r_i/\partial j_j`$, $`i \le j`$, by memoised recursion;
 //! 4. **simplify** ([`simplify`]): all outputs of a term together in one bounded `egg`
 //!    e-graph, extraction by weighted operation count, re-hash-consing for sharing;
-//! 5. **generate** ([`codegen`]): straight-line kernels generic over the runtime `Scalar`.
+//! 5. **generate** ([`codegen`]): straight-line kernels generic over the runtime `Scalar`, and
+//!    ([`taylor`]) Taylor-mode kernels that extend the residual's Taylor coefficients one order
+//!    at a time from a per-point tape (the ANM's right-hand sides).
 //!
 //! The crate is a plain library; the `wrinkle-macros` proc-macro crate only calls
 //! [`expand`].
@@ -22,12 +24,13 @@ pub mod kernel;
 pub mod semantic;
 pub mod simplify;
 pub mod syntax;
+pub mod taylor;
 
 use proc_macro2::TokenStream;
 
 pub use graph::{EvaluationError, ExpressionGraph, Function, Node, NodeId};
 pub use kernel::{CompiledModel, ReferenceKernel, TermKernel, compile};
-pub use semantic::{Derivative, JetEntry, LoweredModel, lower_model};
+pub use semantic::{Derivative, FieldRole, JetEntry, LoweredModel, lower_model};
 pub use simplify::{SimplificationLimits, SimplificationStatistics, SimplifyError, StopKind};
 pub use syntax::{ModelDeclaration, Quadrature};
 

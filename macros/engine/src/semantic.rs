@@ -28,6 +28,72 @@ pub struct JetEntry {
     pub derivative: Derivative,
 }
 
+/// What a field is (mirror of the runtime's `FieldRole`): the runtime derives boundary
+/// conditions, the physical deflection and the reported amplitudes from it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum FieldRole {
+    /// In-plane displacement along X.
+    DisplacementX,
+    /// In-plane displacement along Y.
+    DisplacementY,
+    /// Transverse deflection of a plate.
+    Deflection,
+    /// Reissner–Mindlin rotation paired with $`\partial w/\partial X`$.
+    RotationX,
+    /// Reissner–Mindlin rotation paired with $`\partial w/\partial Y`$.
+    RotationY,
+    /// Real envelope of the first harmonic of the deflection.
+    Envelope,
+    /// Real part of a complex first-harmonic envelope.
+    EnvelopeReal,
+    /// Imaginary part of a complex first-harmonic envelope.
+    EnvelopeImaginary,
+    /// Mean (zeroth-harmonic) deflection.
+    MeanDeflection,
+    /// No role declared: the runtime gives the field no meaning.
+    Other,
+}
+
+impl FieldRole {
+    /// Every role with its DSL spelling (the identifier in `w [deflection]`).
+    pub const ALL: [(FieldRole, &'static str); 10] = [
+        (FieldRole::DisplacementX, "displacement_x"),
+        (FieldRole::DisplacementY, "displacement_y"),
+        (FieldRole::Deflection, "deflection"),
+        (FieldRole::RotationX, "rotation_x"),
+        (FieldRole::RotationY, "rotation_y"),
+        (FieldRole::Envelope, "envelope"),
+        (FieldRole::EnvelopeReal, "envelope_real"),
+        (FieldRole::EnvelopeImaginary, "envelope_imaginary"),
+        (FieldRole::MeanDeflection, "mean_deflection"),
+        (FieldRole::Other, "other"),
+    ];
+
+    /// Looks a role up by its DSL spelling.
+    pub fn from_name(name: &str) -> Option<FieldRole> {
+        Self::ALL
+            .iter()
+            .find(|(_, spelling)| *spelling == name)
+            .map(|(role, _)| *role)
+    }
+
+    /// The runtime enum variant name (`DisplacementX`).
+    pub fn variant_name(self) -> &'static str {
+        match self {
+            FieldRole::DisplacementX => "DisplacementX",
+            FieldRole::DisplacementY => "DisplacementY",
+            FieldRole::Deflection => "Deflection",
+            FieldRole::RotationX => "RotationX",
+            FieldRole::RotationY => "RotationY",
+            FieldRole::Envelope => "Envelope",
+            FieldRole::EnvelopeReal => "EnvelopeReal",
+            FieldRole::EnvelopeImaginary => "EnvelopeImaginary",
+            FieldRole::MeanDeflection => "MeanDeflection",
+            FieldRole::Other => "Other",
+        }
+    }
+}
+
 /// A runtime parameter.
 #[derive(Clone, Debug)]
 pub struct Parameter {
@@ -63,6 +129,8 @@ pub struct LoweredModel {
     pub attributes: Vec<syn::Attribute>,
     /// Field names.
     pub fields: Vec<String>,
+    /// Field roles, one per field ([`FieldRole::Other`] when none was declared).
+    pub field_roles: Vec<FieldRole>,
     /// Parameters.
     pub parameters: Vec<Parameter>,
     /// Model jet, sorted by field then derivative; `Node::Jet(k)` refers to `jet[k]`.
@@ -125,16 +193,16 @@ fn jet_entry_of_code(code: usize) -> JetEntry {
     }
 }
 
-struct Lowering<'a> {
+struct Lowering {
     graph: ExpressionGraph,
     scope: HashMap<String, Binding>,
     /// Names declared later in the model (for "used before its definition" hints).
     declared_later: HashMap<String, &'static str>,
-    fields: &'a [Ident],
+    fields: Vec<Ident>,
     errors: Vec<syn::Error>,
 }
 
-impl Lowering<'_> {
+impl Lowering {
     fn lower(&mut self, expression: &Expression) -> Option<NodeId> {
         match expression {
             Expression::Number { value, .. } => Some(self.graph.constant(*value)),
@@ -273,8 +341,9 @@ pub fn lower_model(declaration: &ModelDeclaration) -> Result<LoweredModel, syn::
         ));
     }
     for (index, field) in declaration.fields.iter().enumerate() {
-        declare(&mut scope, field, Binding::Field(index), &mut errors);
+        declare(&mut scope, &field.name, Binding::Field(index), &mut errors);
     }
+    let field_roles = validate_roles(declaration, &mut errors);
     for (index, parameter) in declaration.parameters.iter().enumerate() {
         declare(
             &mut scope,
@@ -300,7 +369,7 @@ pub fn lower_model(declaration: &ModelDeclaration) -> Result<LoweredModel, syn::
         graph: ExpressionGraph::new(),
         scope,
         declared_later,
-        fields: &declaration.fields,
+        fields: declaration.fields.iter().map(|f| f.name.clone()).collect(),
         errors,
     };
     let mut raw_terms = Vec::new();
@@ -348,7 +417,7 @@ pub fn lower_model(declaration: &ModelDeclaration) -> Result<LoweredModel, syn::
     let roots: Vec<NodeId> = raw_terms.iter().map(|(_, value)| *value).collect();
     let used_codes = graph.jet_dependencies(&roots);
     if errors.is_empty() {
-        for (index, field) in declaration.fields.iter().enumerate() {
+        for (index, field) in declaration.fields.iter().map(|f| &f.name).enumerate() {
             if !used_codes.iter().any(|code| code / 3 == index) {
                 errors.push(syn::Error::new(
                     field.span(),
@@ -388,7 +457,12 @@ pub fn lower_model(declaration: &ModelDeclaration) -> Result<LoweredModel, syn::
         registry_name: declaration.registry_name.value(),
         documentation: declaration.documentation.clone(),
         attributes: declaration.attributes.clone(),
-        fields: declaration.fields.iter().map(ToString::to_string).collect(),
+        fields: declaration
+            .fields
+            .iter()
+            .map(|field| field.name.to_string())
+            .collect(),
+        field_roles,
         parameters: declaration
             .parameters
             .iter()
@@ -407,7 +481,49 @@ pub fn lower_model(declaration: &ModelDeclaration) -> Result<LoweredModel, syn::
     })
 }
 
-fn declare_in(lowering: &mut Lowering<'_>, name: &Ident, binding: Binding) -> bool {
+/// The declared role of every field; an unknown role name or a role declared twice (other than
+/// `other`) is an error at the role's token.
+fn validate_roles(declaration: &ModelDeclaration, errors: &mut Vec<syn::Error>) -> Vec<FieldRole> {
+    let mut roles = Vec::with_capacity(declaration.fields.len());
+    let mut seen: HashMap<FieldRole, String> = HashMap::new();
+    for field in &declaration.fields {
+        let Some(role_name) = &field.role else {
+            roles.push(FieldRole::Other);
+            continue;
+        };
+        let Some(role) = FieldRole::from_name(&role_name.to_string()) else {
+            let expected: Vec<String> = FieldRole::ALL
+                .iter()
+                .map(|(_, spelling)| format!("`{spelling}`"))
+                .collect();
+            errors.push(syn::Error::new(
+                role_name.span(),
+                format!(
+                    "unknown field role `{role_name}`: expected one of {}",
+                    expected.join(", ")
+                ),
+            ));
+            roles.push(FieldRole::Other);
+            continue;
+        };
+        if role != FieldRole::Other {
+            if let Some(previous) = seen.get(&role) {
+                errors.push(syn::Error::new(
+                    role_name.span(),
+                    format!(
+                        "field role `{role_name}` is already the role of field `{previous}`: each role (except `other`) names one field"
+                    ),
+                ));
+            } else {
+                seen.insert(role, field.name.to_string());
+            }
+        }
+        roles.push(role);
+    }
+    roles
+}
+
+fn declare_in(lowering: &mut Lowering, name: &Ident, binding: Binding) -> bool {
     declare(&mut lowering.scope, name, binding, &mut lowering.errors)
 }
 

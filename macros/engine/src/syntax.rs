@@ -186,6 +186,15 @@ pub enum Quadrature {
     Reduced,
 }
 
+/// `w [deflection]`: a field and, optionally, its role.
+#[derive(Clone, Debug)]
+pub struct FieldDeclaration {
+    /// Field name.
+    pub name: Ident,
+    /// The role identifier as written (`deflection`), validated during lowering.
+    pub role: Option<Ident>,
+}
+
 /// `young "Young's modulus E (MPa)"`.
 #[derive(Clone, Debug)]
 pub struct ParameterDeclaration {
@@ -237,8 +246,8 @@ pub struct ModelDeclaration {
     pub registry_name: LitStr,
     /// Span of the `fields` keyword (for "no fields" errors).
     pub fields_keyword: Span,
-    /// Unknown fields.
-    pub fields: Vec<Ident>,
+    /// Unknown fields, each with its optional role.
+    pub fields: Vec<FieldDeclaration>,
     /// Runtime parameters.
     pub parameters: Vec<ParameterDeclaration>,
     /// Lets and energy terms in order.
@@ -300,7 +309,19 @@ impl Parse for ModelDeclaration {
         content.parse::<Token![:]>()?;
         let mut fields = Vec::new();
         while !content.peek(Token![;]) {
-            fields.push(content.parse::<Ident>()?);
+            let name = content.parse::<Ident>()?;
+            let role = if content.peek(syn::token::Bracket) {
+                let inner;
+                bracketed!(inner in content);
+                let role: Ident = inner.parse()?;
+                if !inner.is_empty() {
+                    return Err(inner.error("expected a single field role, e.g. `w [deflection]`"));
+                }
+                Some(role)
+            } else {
+                None
+            };
+            fields.push(FieldDeclaration { name, role });
             if content.peek(Token![,]) {
                 content.parse::<Token![,]>()?;
             } else {

@@ -5,7 +5,8 @@
 use proc_macro2::TokenStream;
 use quote::quote;
 use wrinkle_energy::{
-    CompiledModel, Derivative, SimplificationLimits, StopKind, TermKernel, analyze, parse_and_lower,
+    CompiledModel, Derivative, FieldRole, SimplificationLimits, StopKind, TermKernel, analyze,
+    parse_and_lower,
 };
 
 /// A tiny deterministic generator (64-bit LCG, top 53 bits) for reproducible points.
@@ -445,4 +446,69 @@ fn power_binds_tighter_than_unary_minus_and_is_right_associative() {
         relative_error(value, truth, 1e-300) < 1e-14,
         "{value} vs {truth}"
     );
+}
+
+#[test]
+fn field_roles_are_parsed_validated_and_default_to_other() {
+    let lowered = parse_and_lower(quote! {
+        model Plate as "plate" {
+            fields: u [displacement_x], w [deflection], c;
+            energy e = u.x^2 + w.x^2 + c^2;
+        }
+    })
+    .expect("valid model");
+    assert_eq!(
+        lowered.field_roles,
+        vec![
+            FieldRole::DisplacementX,
+            FieldRole::Deflection,
+            FieldRole::Other
+        ]
+    );
+    let unknown = error_messages(quote! {
+        model Bad as "bad" { fields: w [transverse]; energy e = w^2; }
+    });
+    assert!(
+        unknown[0].contains("unknown field role `transverse`"),
+        "{unknown:?}"
+    );
+    assert!(unknown[0].contains("`deflection`"), "{unknown:?}");
+    let twice = error_messages(quote! {
+        model Bad as "bad" { fields: w [envelope], z [envelope], o [other], p [other];
+            energy e = w^2 + z^2 + o^2 + p^2; }
+    });
+    assert_eq!(twice.len(), 1, "{twice:?}");
+    assert!(
+        twice[0].contains("already the role of field `w`"),
+        "{twice:?}"
+    );
+}
+
+#[test]
+fn taylor_programs_tape_only_what_recurrences_read() {
+    use wrinkle_energy::taylor::{Instruction, TaylorProgram};
+    let model = compiled(reference_envelope());
+    let membrane = &model.terms[0];
+    let bending = &model.terms[1];
+    let program = TaylorProgram::new(&membrane.graph, &membrane.residual, &membrane.jet);
+    assert!(!program.is_linear());
+    // Every operand of a product is on the tape, and nothing else but quotient histories.
+    for instruction in &program.instructions {
+        if let Instruction::Multiply(a, b) = *instruction {
+            assert!(program.slot_of[a].is_some() && program.slot_of[b].is_some());
+        }
+        if let Instruction::Square(a) = *instruction {
+            assert!(program.slot_of[a].is_some());
+        }
+    }
+    assert!(program.slots > 0 && program.slots < program.instructions.len());
+    eprintln!(
+        "membrane: {} instructions, {} tape slots",
+        program.instructions.len(),
+        program.slots
+    );
+    let program = TaylorProgram::new(&bending.graph, &bending.residual, &bending.jet);
+    assert!(program.is_linear());
+    assert_eq!(program.slots, 0);
+    assert!(program.zero_in_prediction.iter().all(|&z| z));
 }

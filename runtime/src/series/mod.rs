@@ -6,10 +6,13 @@
 //! * [`PathSeries`]: the vector series $`(U(a), \lambda(a))`$ of one ANM step, with the
 //!   classical step length [`series_step_length`] and the bifurcation indicator
 //!   [`geometric_ratio`].
+//! * [`recurrence`]: the order-$`k`$ rules (product, quotient, reciprocal) that the generated
+//!   Taylor-mode kernels apply to their per-point tapes.
 //! * [`PadeApproximant`]: rational approximants with a common denominator that extend the
 //!   validity range of a step ([`PadeApproximant::pade_step_length`]).
 
 mod pade;
+pub mod recurrence;
 mod scalar_series;
 mod vector_series;
 

@@ -1,0 +1,526 @@
+//! Taylor-mode kernels: the residual of a term along a jet series, one order at a time.
+//!
+//! For the Asymptotic Numerical Method the runtime needs, at every order $`k`$ of a step, the
+//! order-$`k`$ coefficient of the residual $`r(\mathbf{j}(a))`$ with the order-$`k`$ jet
+//! $`\mathbf{j}_k`$ still unknown (taken as zero), and, once the linear solve has given
+//! $`\mathbf{j}_k`$, the true order-$`k`$ coefficients of every intermediate. Evaluating the
+//! whole residual on truncated series recomputes every coefficient at every order
+//! ($`O(N^3)`$ per step); here the residual's expression DAG is lowered once into a
+//! [`TaylorProgram`] of elementary operations on series *registers*, and the generated code
+//! keeps, per quadrature point, a *tape* with the coefficient history of the few registers a
+//! recurrence reads: operands of series × series products, divisors, quotients and
+//! reciprocals. Order $`k`$ then costs $`O(k)`$ per product and $`O(1)`$ per linear operation.
+//!
+//! Three kernels per term:
+//! * `taylor_start` — order 0: a plain `f64` evaluation writing every slot's $`x_0`$;
+//! * `taylor_predict` — order $`k \ge 1`$ with $`\mathbf{j}_k = 0`$: linear operations
+//!   propagate order-$`k`$ values, products use [`product`](../../wrinkle_runtime) rules over the
+//!   tape; returns the residual's order-$`k`$ coefficient and writes the slots' predicted
+//!   $`x_k`$;
+//! * `taylor_commit` — adds to each slot's $`x_k`$ its exact correction, the directional
+//!   derivative at order 0 along $`\mathbf{j}_k`$ (the order-$`k`$ coefficient of any smooth
+//!   function of the jet is affine in $`\mathbf{j}_k`$ with that slope): one forward-mode sweep.
+
+use std::collections::HashMap;
+
+use proc_macro2::{Ident, TokenStream};
+use quote::{format_ident, quote};
+
+use crate::codegen::{KernelWriter, Operation, operation_of};
+use crate::graph::{ExpressionGraph, Node, NodeId};
+
+/// One elementary operation of a [`TaylorProgram`]; `usize` operands are registers,
+/// [`NodeId`] operands are `f64` (parameter-only) nodes of the term graph.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Instruction {
+    /// Term-local jet entry.
+    Jet(usize),
+    /// $`a + b`$.
+    Add(usize, usize),
+    /// $`a + c`$.
+    AddReal(usize, NodeId),
+    /// $`a - b`$.
+    Subtract(usize, usize),
+    /// $`a - c`$.
+    SubtractReal(usize, NodeId),
+    /// $`c - a`$.
+    SubtractFromReal(usize, NodeId),
+    /// $`-a`$.
+    Negate(usize),
+    /// $`a\,c`$.
+    Scale(usize, NodeId),
+    /// $`a / c`$.
+    DivideByReal(usize, NodeId),
+    /// $`a\,b`$ (series × series).
+    Multiply(usize, usize),
+    /// $`a^2`$.
+    Square(usize),
+    /// $`a / b`$ (series ÷ series).
+    Divide(usize, usize),
+    /// $`1 / a`$.
+    Reciprocal(usize),
+}
+
+impl Instruction {
+    /// Registers whose coefficient history this instruction's recurrence reads (operands; the
+    /// result itself for quotients and reciprocals is added by [`TaylorProgram::new`]).
+    fn history_operands(self) -> Vec<usize> {
+        match self {
+            Instruction::Multiply(a, b) => vec![a, b],
+            Instruction::Square(a) => vec![a],
+            Instruction::Divide(_, b) => vec![b],
+            Instruction::Reciprocal(a) => vec![a],
+            _ => Vec::new(),
+        }
+    }
+    fn needs_own_history(self) -> bool {
+        matches!(self, Instruction::Divide(..) | Instruction::Reciprocal(_))
+    }
+    /// Whether the operation is nonlinear in its series operands.
+    fn is_nonlinear(self) -> bool {
+        matches!(
+            self,
+            Instruction::Multiply(..)
+                | Instruction::Square(_)
+                | Instruction::Divide(..)
+                | Instruction::Reciprocal(_)
+        )
+    }
+}
+
+/// A residual output: a register, or a value that does not depend on the jet (its
+/// coefficients of order ≥ 1 vanish).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum TaylorOutput {
+    /// The register holding the residual entry.
+    Register(usize),
+    /// Independent of the jet.
+    Constant,
+}
+
+/// The residual of one term as straight-line operations on series registers.
+#[derive(Clone, Debug)]
+pub struct TaylorProgram {
+    /// Operations in evaluation order; register `i` is the result of instruction `i`.
+    pub instructions: Vec<Instruction>,
+    /// The tape slot of each register whose history is read, `None` otherwise.
+    pub slot_of: Vec<Option<usize>>,
+    /// Number of tape slots.
+    pub slots: usize,
+    /// One output per term-local residual entry.
+    pub outputs: Vec<TaylorOutput>,
+    /// Registers that are identically zero at every order ≥ 1 when the order-$`k`$ jet is zero
+    /// (linear combinations of jet entries): `taylor_predict` skips them.
+    pub zero_in_prediction: Vec<bool>,
+}
+
+impl TaylorProgram {
+    /// Lowers the residual roots of a term (nodes of `graph`, whose `Jet(k)` leaves are model
+    /// jet indices; `term_jet` maps term-local positions to them).
+    pub fn new(graph: &ExpressionGraph, residual: &[NodeId], term_jet: &[usize]) -> Self {
+        let mut builder = Builder {
+            graph,
+            term_jet,
+            instructions: Vec::new(),
+            register_of: HashMap::new(),
+        };
+        let outputs = residual
+            .iter()
+            .map(|&root| {
+                if graph.depends_on_jet(root) {
+                    TaylorOutput::Register(builder.register(root))
+                } else {
+                    TaylorOutput::Constant
+                }
+            })
+            .collect();
+        let instructions = builder.instructions;
+        let mut needs_history = vec![false; instructions.len()];
+        for (index, instruction) in instructions.iter().enumerate() {
+            for operand in instruction.history_operands() {
+                needs_history[operand] = true;
+            }
+            if instruction.needs_own_history() {
+                needs_history[index] = true;
+            }
+        }
+        let mut slots = 0;
+        let slot_of = needs_history
+            .iter()
+            .map(|&needed| {
+                needed.then(|| {
+                    slots += 1;
+                    slots - 1
+                })
+            })
+            .collect();
+        let mut zero_in_prediction = vec![false; instructions.len()];
+        for (index, instruction) in instructions.iter().enumerate() {
+            let zero = match *instruction {
+                Instruction::Jet(_) => true,
+                Instruction::Add(a, b) | Instruction::Subtract(a, b) => {
+                    zero_in_prediction[a] && zero_in_prediction[b]
+                }
+                Instruction::AddReal(a, _)
+                | Instruction::SubtractReal(a, _)
+                | Instruction::SubtractFromReal(a, _)
+                | Instruction::Negate(a)
+                | Instruction::Scale(a, _)
+                | Instruction::DivideByReal(a, _) => zero_in_prediction[a],
+                _ => false,
+            };
+            zero_in_prediction[index] = zero;
+        }
+        TaylorProgram {
+            instructions,
+            slot_of,
+            slots,
+            outputs,
+            zero_in_prediction,
+        }
+    }
+
+    /// Whether the residual is affine in the jet (no nonlinear operation at all).
+    pub fn is_linear(&self) -> bool {
+        !self.instructions.iter().any(|i| i.is_nonlinear())
+    }
+
+    /// The `f64` nodes the program reads.
+    fn real_operands(&self) -> Vec<NodeId> {
+        self.instructions
+            .iter()
+            .filter_map(|instruction| match *instruction {
+                Instruction::AddReal(_, c)
+                | Instruction::SubtractReal(_, c)
+                | Instruction::SubtractFromReal(_, c)
+                | Instruction::Scale(_, c)
+                | Instruction::DivideByReal(_, c) => Some(c),
+                _ => None,
+            })
+            .collect()
+    }
+}
+
+struct Builder<'a> {
+    graph: &'a ExpressionGraph,
+    term_jet: &'a [usize],
+    instructions: Vec<Instruction>,
+    register_of: HashMap<NodeId, usize>,
+}
+
+impl Builder<'_> {
+    fn push(&mut self, instruction: Instruction) -> usize {
+        self.instructions.push(instruction);
+        self.instructions.len() - 1
+    }
+
+    fn is_series(&self, id: NodeId) -> bool {
+        self.graph.depends_on_jet(id)
+    }
+
+    /// The register of a jet-dependent node, lowering its operands first (iteratively, so deep
+    /// expressions cannot overflow the stack).
+    fn register(&mut self, root: NodeId) -> usize {
+        let mut stack = vec![(root, false)];
+        while let Some((id, expanded)) = stack.pop() {
+            if self.register_of.contains_key(&id) {
+                continue;
+            }
+            let operation = operation_of(self.graph, id);
+            if !expanded {
+                stack.push((id, true));
+                for child in operation.children() {
+                    if self.is_series(child) && !self.register_of.contains_key(&child) {
+                        stack.push((child, false));
+                    }
+                }
+                continue;
+            }
+            let register = self.lower(id, operation);
+            self.register_of.insert(id, register);
+        }
+        self.register_of[&root]
+    }
+
+    fn lower(&mut self, id: NodeId, operation: Operation) -> usize {
+        let series = |builder: &Self, n: NodeId| builder.is_series(n);
+        let r = |builder: &Self, n: NodeId| builder.register_of[&n];
+        match operation {
+            Operation::Leaf => match self.graph.node(id) {
+                Node::Jet(k) => {
+                    let local = self
+                        .term_jet
+                        .iter()
+                        .position(|&entry| entry == k)
+                        .expect("a term only reads its own jet entries");
+                    self.push(Instruction::Jet(local))
+                }
+                other => unreachable!("a jet-dependent leaf is a jet entry, not {other:?}"),
+            },
+            Operation::Add(a, b) => match (series(self, a), series(self, b)) {
+                (true, true) => self.push(Instruction::Add(r(self, a), r(self, b))),
+                (true, false) => self.push(Instruction::AddReal(r(self, a), b)),
+                _ => self.push(Instruction::AddReal(r(self, b), a)),
+            },
+            Operation::Subtract(a, b) => match (series(self, a), series(self, b)) {
+                (true, true) => self.push(Instruction::Subtract(r(self, a), r(self, b))),
+                (true, false) => self.push(Instruction::SubtractReal(r(self, a), b)),
+                _ => self.push(Instruction::SubtractFromReal(r(self, b), a)),
+            },
+            Operation::Multiply(a, b) => match (series(self, a), series(self, b)) {
+                (true, true) if a == b => self.push(Instruction::Square(r(self, a))),
+                (true, true) => self.push(Instruction::Multiply(r(self, a), r(self, b))),
+                (true, false) => self.push(Instruction::Scale(r(self, a), b)),
+                _ => self.push(Instruction::Scale(r(self, b), a)),
+            },
+            Operation::Divide(a, b) => match (series(self, a), series(self, b)) {
+                (true, true) => self.push(Instruction::Divide(r(self, a), r(self, b))),
+                (true, false) => self.push(Instruction::DivideByReal(r(self, a), b)),
+                _ => {
+                    let reciprocal = self.push(Instruction::Reciprocal(r(self, b)));
+                    self.push(Instruction::Scale(reciprocal, a))
+                }
+            },
+            Operation::Negate(a) => self.push(Instruction::Negate(r(self, a))),
+            Operation::Reciprocal(a) => self.push(Instruction::Reciprocal(r(self, a))),
+            Operation::Power(a, n) => {
+                let base = r(self, a);
+                let magnitude = self.positive_power(base, n.unsigned_abs());
+                if n < 0 {
+                    self.push(Instruction::Reciprocal(magnitude))
+                } else {
+                    magnitude
+                }
+            }
+            Operation::Apply(..) => {
+                unreachable!("functions apply to parameter-only expressions")
+            }
+        }
+    }
+
+    /// $`x^n`$, $`n \ge 1`$, by binary exponentiation (squares and products).
+    fn positive_power(&mut self, base: usize, n: u32) -> usize {
+        if n == 1 {
+            return base;
+        }
+        let half = self.positive_power(base, n / 2);
+        let squared = self.push(Instruction::Square(half));
+        if n % 2 == 1 {
+            self.push(Instruction::Multiply(squared, base))
+        } else {
+            squared
+        }
+    }
+}
+
+fn register_name(register: usize) -> Ident {
+    format_ident!("x{}", register)
+}
+
+fn delta_name(register: usize) -> Ident {
+    format_ident!("d{}", register)
+}
+
+/// The generated bodies of one term's three Taylor-mode kernels.
+pub(crate) struct TaylorKernels {
+    pub start: TokenStream,
+    pub predict: TokenStream,
+    pub commit: TokenStream,
+}
+
+/// `tape[slot * stride ..]` as a token expression.
+fn history(slot: usize) -> TokenStream {
+    quote!(&tape[#slot * stride..])
+}
+
+/// Generates the three kernels of `program` (the term's `f64` locals come from `writer`).
+pub(crate) fn generate(program: &TaylorProgram, writer: &KernelWriter<'_>) -> TaylorKernels {
+    let reals = writer.statements(&program.real_operands());
+    let real = |c: NodeId| writer.reference(c);
+    let slot = |register: usize| program.slot_of[register];
+
+    // Order 0: plain evaluation.
+    let mut start = TokenStream::new();
+    for (index, instruction) in program.instructions.iter().enumerate() {
+        let x = register_name(index);
+        let value = match *instruction {
+            Instruction::Jet(local) => quote!(jet[#local]),
+            Instruction::Add(a, b) => binary(a, quote!(+), b),
+            Instruction::Subtract(a, b) => binary(a, quote!(-), b),
+            Instruction::Multiply(a, b) => binary(a, quote!(*), b),
+            Instruction::Divide(a, b) => binary(a, quote!(/), b),
+            Instruction::Square(a) => binary(a, quote!(*), a),
+            Instruction::AddReal(a, c) => real_binary(a, quote!(+), real(c)),
+            Instruction::SubtractReal(a, c) => real_binary(a, quote!(-), real(c)),
+            Instruction::Scale(a, c) => real_binary(a, quote!(*), real(c)),
+            Instruction::DivideByReal(a, c) => real_binary(a, quote!(/), real(c)),
+            Instruction::SubtractFromReal(a, c) => {
+                let (a, c) = (register_name(a), real(c));
+                quote!(#c - #a)
+            }
+            Instruction::Negate(a) => {
+                let a = register_name(a);
+                quote!(-#a)
+            }
+            Instruction::Reciprocal(a) => {
+                let a = register_name(a);
+                quote!(1.0 / #a)
+            }
+        };
+        start.extend(quote!(let #x: f64 = #value;));
+        if let Some(s) = slot(index) {
+            start.extend(quote!(tape[#s * stride] = #x;));
+        }
+    }
+
+    // Order k with a zero order-k jet.
+    let mut predict = TokenStream::new();
+    for (index, instruction) in program.instructions.iter().enumerate() {
+        if program.zero_in_prediction[index] {
+            if let Some(s) = slot(index) {
+                predict.extend(quote!(tape[#s * stride + k] = 0.0;));
+            }
+            continue;
+        }
+        let x = register_name(index);
+        let value_of = |r: usize| {
+            if program.zero_in_prediction[r] {
+                quote!(0.0)
+            } else {
+                let name = register_name(r);
+                quote!(#name)
+            }
+        };
+        let value = match *instruction {
+            Instruction::Jet(_) => unreachable!("jet entries are zero in the prediction"),
+            Instruction::Add(a, b) => {
+                let (a, b) = (value_of(a), value_of(b));
+                quote!(#a + #b)
+            }
+            Instruction::Subtract(a, b) => {
+                let (a, b) = (value_of(a), value_of(b));
+                quote!(#a - #b)
+            }
+            Instruction::AddReal(a, _) | Instruction::SubtractReal(a, _) => value_of(a),
+            Instruction::SubtractFromReal(a, _) | Instruction::Negate(a) => {
+                let a = value_of(a);
+                quote!(-#a)
+            }
+            Instruction::Scale(a, c) => {
+                let (a, c) = (value_of(a), real(c));
+                quote!(#a * #c)
+            }
+            Instruction::DivideByReal(a, c) => {
+                let (a, c) = (value_of(a), real(c));
+                quote!(#a / #c)
+            }
+            Instruction::Multiply(a, b) => {
+                let (a, b) = (history(slot(a).unwrap()), history(slot(b).unwrap()));
+                quote!(::wrinkle_runtime::series::recurrence::product(#a, #b, k))
+            }
+            Instruction::Square(a) => {
+                let a = history(slot(a).unwrap());
+                quote!(::wrinkle_runtime::series::recurrence::square(#a, k))
+            }
+            Instruction::Divide(a, b) => {
+                let a = value_of(a);
+                let (b, c) = (history(slot(b).unwrap()), history(slot(index).unwrap()));
+                quote!(::wrinkle_runtime::series::recurrence::quotient(#a, #b, #c, k))
+            }
+            Instruction::Reciprocal(a) => {
+                let (b, r) = (history(slot(a).unwrap()), history(slot(index).unwrap()));
+                quote!(::wrinkle_runtime::series::recurrence::reciprocal(#b, #r, k))
+            }
+        };
+        predict.extend(quote!(let #x: f64 = #value;));
+        if let Some(s) = slot(index) {
+            predict.extend(quote!(tape[#s * stride + k] = #x;));
+        }
+    }
+    let outputs = program
+        .outputs
+        .iter()
+        .enumerate()
+        .map(|(i, output)| match *output {
+            TaylorOutput::Register(r) if !program.zero_in_prediction[r] => {
+                let x = register_name(r);
+                quote!(out[#i] = #x;)
+            }
+            _ => quote!(out[#i] = 0.0;),
+        });
+    predict.extend(quote!(#(#outputs)*));
+
+    // Commit: forward-mode derivative at order 0 along the order-k jet.
+    let mut commit = TokenStream::new();
+    let order0 = |register: usize| {
+        let s = slot(register).expect("operands of nonlinear operations are on the tape");
+        quote!(tape[#s * stride])
+    };
+    for (index, instruction) in program.instructions.iter().enumerate() {
+        let d = delta_name(index);
+        let dn = delta_name;
+        let value = match *instruction {
+            Instruction::Jet(local) => quote!(jet[#local]),
+            Instruction::Add(a, b) => {
+                let (a, b) = (dn(a), dn(b));
+                quote!(#a + #b)
+            }
+            Instruction::Subtract(a, b) => {
+                let (a, b) = (dn(a), dn(b));
+                quote!(#a - #b)
+            }
+            Instruction::AddReal(a, _) | Instruction::SubtractReal(a, _) => {
+                let a = dn(a);
+                quote!(#a)
+            }
+            Instruction::SubtractFromReal(a, _) | Instruction::Negate(a) => {
+                let a = dn(a);
+                quote!(-#a)
+            }
+            Instruction::Scale(a, c) => {
+                let (a, c) = (dn(a), real(c));
+                quote!(#a * #c)
+            }
+            Instruction::DivideByReal(a, c) => {
+                let (a, c) = (dn(a), real(c));
+                quote!(#a / #c)
+            }
+            Instruction::Multiply(a, b) => {
+                let (da, db, a0, b0) = (dn(a), dn(b), order0(a), order0(b));
+                quote!(#a0 * #db + #da * #b0)
+            }
+            Instruction::Square(a) => {
+                let (da, a0) = (dn(a), order0(a));
+                quote!(2.0 * #a0 * #da)
+            }
+            Instruction::Divide(a, b) => {
+                let (da, db, b0, c0) = (dn(a), dn(b), order0(b), order0(index));
+                quote!((#da - #db * #c0) / #b0)
+            }
+            Instruction::Reciprocal(a) => {
+                let (da, a0, r0) = (dn(a), order0(a), order0(index));
+                quote!(-(#da * #r0) / #a0)
+            }
+        };
+        commit.extend(quote!(let #d: f64 = #value;));
+        if let Some(s) = slot(index) {
+            commit.extend(quote!(tape[#s * stride + k] += #d;));
+        }
+    }
+
+    TaylorKernels {
+        start: quote!({ #reals #start }),
+        predict: quote!({ let k = order; #reals #predict }),
+        commit: quote!({ let k = order; #reals #commit }),
+    }
+}
+
+fn binary(a: usize, operator: TokenStream, b: usize) -> TokenStream {
+    let (a, b) = (register_name(a), register_name(b));
+    quote!(#a #operator #b)
+}
+
+fn real_binary(a: usize, operator: TokenStream, c: TokenStream) -> TokenStream {
+    let a = register_name(a);
+    quote!(#a #operator #c)
+}
