@@ -6,6 +6,10 @@
 //!    residual $`g(a) = R(U(a),\lambda(a))`$ is a polynomial of degree 6 (the residual is cubic in
 //!    $`U`$). Its coefficients from the generated kernels run on truncated series must equal those
 //!    of a least-squares polynomial fit to `f64` residuals at 13 Chebyshev points (relative 1e-8).
+//! 3. The Taylor-mode kernels (the ANM's production path) give the same right-hand sides as the
+//!    generic kernels on truncated series, order by order on identical lower orders (relative
+//!    1e-12), and the same step series (relative 1e-9 per coefficient, round-off amplified by
+//!    the solves).
 //! 2. The series of an ANM step satisfies $`R(U(a),\lambda(a)) = O(a^{N+1})`$: halving $`a`$
 //!    divides the residual by $`\approx 2^{N+1}`$ (N = 5: 64).
 
@@ -18,7 +22,7 @@ use wrinkle_runtime::EnergyModel;
 use wrinkle_runtime::linear::factor::SparseFactorization;
 use wrinkle_runtime::problem::{Problem, norm};
 use wrinkle_runtime::series::Series;
-use wrinkle_runtime::solve::anm::compute_series;
+use wrinkle_runtime::solve::anm::{compute_series, compute_series_generic};
 use wrinkle_runtime::solve::newton::{NewtonOptions, newton};
 use wrinkle_runtime::solve::path::PathState;
 
@@ -128,7 +132,8 @@ fn anm_series_residual_is_of_order_n_plus_one() {
     problem.tangent_into(&state.displacement, load, &mut matrix);
     factor.factorize(&matrix).unwrap();
     let order = 5;
-    let (series, _) = compute_series(&problem, &state, &factor, order, None).unwrap();
+    let mut tape = problem.assembler.taylor_tape(order);
+    let (series, _) = compute_series(&problem, &state, &factor, order, None, &mut tape).unwrap();
     // Find a with residual well above round-off, then halve it.
     let residual_at = |a: f64| {
         let (u, l) = series.evaluate(a);
@@ -144,4 +149,92 @@ fn anm_series_residual_is_of_order_n_plus_one() {
         (40.0..100.0).contains(&ratio),
         "expected ≈ 2^(N+1) = 64, got {ratio}"
     );
+}
+
+/// A state near the threshold with a visible envelope (the perturbed path at λ = 0.088).
+fn wrinkled_state(problem: &Problem<ReferenceEnvelope>) -> (PathState, SparseFactorization) {
+    let n = problem.free_count();
+    let mut factor = SparseFactorization::analyze(problem.assembler.pattern()).unwrap();
+    let mut matrix = problem.new_matrix();
+    let load = 0.088;
+    let equilibrium = newton(
+        problem,
+        vec![0.0; n],
+        load,
+        &mut factor,
+        &mut matrix,
+        &NewtonOptions::default(),
+    )
+    .unwrap();
+    problem.tangent_into(&equilibrium.solution, load, &mut matrix);
+    factor.factorize(&matrix).unwrap();
+    (
+        PathState {
+            displacement: equilibrium.solution,
+            load,
+        },
+        factor,
+    )
+}
+
+#[test]
+fn taylor_mode_right_hand_sides_equal_the_generic_series_path() {
+    let problem = problem(1e-3);
+    let (state, factor) = wrinkled_state(&problem);
+    let order = 20;
+    let mut tape = problem.assembler.taylor_tape(order);
+    let (series, _) = compute_series(&problem, &state, &factor, order, None, &mut tape).unwrap();
+    // Replay: on the Taylor path's own coefficients, each order's right-hand side both ways.
+    let n = problem.free_count();
+    problem.taylor_start(&state.displacement, state.load, &mut tape);
+    let mut worst: f64 = 0.0;
+    for k in 1..=order {
+        let taylor = problem.taylor_residual(k, &mut tape);
+        let mut free = vec![Series::zeros(k + 1); n];
+        for (i, s) in free.iter_mut().enumerate() {
+            for (c, u) in s
+                .coefficients_mut()
+                .iter_mut()
+                .zip(&series.displacement[..k])
+            {
+                *c = u[i];
+            }
+        }
+        let mut load = Series::zeros(k + 1);
+        load.coefficients_mut()[..k].copy_from_slice(&series.load[..k]);
+        let generic: Vec<f64> = problem
+            .residual(&free, load)
+            .iter()
+            .map(|r| r.coefficient(k))
+            .collect();
+        let scale = norm(&generic).max(1e-300);
+        let difference: f64 = taylor
+            .iter()
+            .zip(&generic)
+            .map(|(a, b)| (a - b).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        if k >= 2 {
+            worst = worst.max(difference / scale);
+        }
+        problem.taylor_commit(k, &series.displacement[k], series.load[k], &mut tape);
+    }
+    eprintln!("worst relative difference of right-hand sides: {worst:e}");
+    assert!(worst < 1e-12, "Taylor mode vs generic series: {worst:e}");
+    // The step series themselves.
+    let (generic, _) = compute_series_generic(&problem, &state, &factor, order, None).unwrap();
+    let mut worst_series: f64 = 0.0;
+    for k in 1..=order {
+        let scale = norm(&series.displacement[k]) + series.load[k].abs();
+        let difference = norm(
+            &series.displacement[k]
+                .iter()
+                .zip(&generic.displacement[k])
+                .map(|(a, b)| a - b)
+                .collect::<Vec<_>>(),
+        ) + (series.load[k] - generic.load[k]).abs();
+        worst_series = worst_series.max(difference / scale);
+    }
+    eprintln!("worst relative difference of step coefficients: {worst_series:e}");
+    assert!(worst_series < 1e-9, "step series differ: {worst_series:e}");
 }

@@ -2,7 +2,7 @@
 //! $`R(U,\lambda) = \partial\Pi/\partial U - F_0 - \lambda F_1`$ over the free dofs.
 
 use crate::fem::{
-    Assembler, BodyLoad, DirichletCondition, DofMap, EdgeTraction, LoadVectors, Mesh,
+    Assembler, BodyLoad, DirichletCondition, DofMap, EdgeTraction, LoadVectors, Mesh, TaylorTape,
 };
 use crate::linear::pattern::SparseMatrix;
 use crate::model::EnergyModel;
@@ -95,6 +95,25 @@ impl<M: EnergyModel> Problem<M> {
             *ri = *ri - (load * self.loads.proportional[i] + self.loads.fixed[i]);
         }
         r
+    }
+
+    /// Taylor mode, order 0, at $`(U_0, \lambda_0)`$: see [`Assembler::taylor_start`].
+    pub fn taylor_start(&self, free: &[f64], load: f64, tape: &mut TaylorTape) {
+        let global = self.assembler.dofs().expand(free, load);
+        self.assembler.taylor_start(&global, tape);
+    }
+
+    /// Taylor mode: the order-$`k`$ coefficient of $`R(U(a), \lambda(a))`$ with
+    /// $`U_k = 0`$, $`\lambda_k = 0`$ (the loads are affine in $`\lambda`$, so only the
+    /// internal forces contribute): the ANM right-hand side is its negative.
+    pub fn taylor_residual(&self, order: usize, tape: &mut TaylorTape) -> Vec<f64> {
+        self.assembler.taylor_predict(order, tape)
+    }
+
+    /// Taylor mode: records the order-$`k`$ coefficients $`(U_k, \lambda_k)`$ once solved.
+    pub fn taylor_commit(&self, order: usize, free: &[f64], load: f64, tape: &mut TaylorTape) {
+        let increment = self.assembler.dofs().expand_increment(free, load);
+        self.assembler.taylor_commit(order, &increment, tape);
     }
 
     /// Total potential energy $`\Pi(U) - U\cdot(F_0 + \lambda F_1)`$ (the work of prescribed

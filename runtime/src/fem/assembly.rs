@@ -9,6 +9,16 @@
 //! $`a`$. Residual and tangent are generic over [`Scalar`]: the same loop assembles `f64`
 //! values, dual numbers (directional derivatives of the tangent) and truncated series (ANM).
 //! The sparsity pattern and the element → value-slot tables are built once.
+//!
+//! **Determinism.** Elements are coloured so that two elements of one colour share no node; the
+//! elements of a colour add into disjoint entries and run in parallel, the colours one after the
+//! other. Every global entry is therefore summed in an order fixed by the mesh, whatever the
+//! number of threads: results are bit-for-bit the same on 1 or N threads, and no per-thread
+//! full-length buffer is needed.
+//!
+//! **Taylor mode** ([`TaylorTape`]): the ANM's right-hand sides come from the models'
+//! Taylor-mode kernels, which keep per quadrature point the coefficient history of the few
+//! intermediates their recurrences read.
 
 use super::dofs::DofMap;
 use super::element::{ElementValues, GaussRule, JacobianError, QUAD8_NODES};
@@ -60,6 +70,8 @@ pub struct Assembler<M: EnergyModel> {
     element_dofs: Vec<Vec<Option<usize>>>,
     pattern: Arc<SparsityPattern>,
     element_slots: Vec<Vec<Option<usize>>>,
+    /// Element colours: no two elements of one colour share a node.
+    colours: Vec<Vec<usize>>,
     parallelism: Parallelism,
 }
 
@@ -113,6 +125,7 @@ impl<M: EnergyModel> Assembler<M> {
             .iter()
             .map(|d| pattern.element_slots(d))
             .collect();
+        let colours = colour_elements(&mesh);
         Ok(Assembler {
             model,
             mesh,
@@ -122,6 +135,7 @@ impl<M: EnergyModel> Assembler<M> {
             element_dofs,
             pattern,
             element_slots,
+            colours,
             parallelism: Parallelism::available(),
         })
     }
@@ -165,37 +179,44 @@ impl<M: EnergyModel> Assembler<M> {
             .sum()
     }
 
-    /// Runs `work(element, buffer)` over all elements, summing per-chunk buffers of length `len`.
-    fn accumulate<S: Scalar>(&self, len: usize, work: impl Fn(usize, &mut [S]) + Sync) -> Vec<S> {
-        let n = self.mesh.elements.len();
-        let chunks = match self.parallelism {
-            Parallelism::Sequential => 1,
-            Parallelism::Chunks(c) => c.clamp(1, n.max(1)),
+    /// Element colours (no two elements of one colour share a node).
+    pub fn colours(&self) -> &[Vec<usize>] {
+        &self.colours
+    }
+
+    /// Runs `work(element, sink)` over every element, each adding its contributions into `out`
+    /// through `sink`. Elements of one colour touch disjoint entries and run in parallel; colours
+    /// run in order, so every entry is summed in the same order for any thread count.
+    fn accumulate<S: Scalar>(
+        &self,
+        out: &mut [S],
+        work: impl Fn(usize, &mut ElementSink<S>) + Sync,
+    ) {
+        let sink = ElementSink {
+            data: out.as_mut_ptr(),
+            len: out.len(),
         };
-        if chunks == 1 {
-            let mut out = vec![S::zero(); len];
-            for e in 0..n {
-                work(e, &mut out);
+        for colour in &self.colours {
+            match self.parallelism {
+                Parallelism::Sequential => {
+                    for &e in colour {
+                        work(e, &mut sink.clone());
+                    }
+                }
+                Parallelism::Chunks(_) => {
+                    colour.par_iter().for_each(|&e| work(e, &mut sink.clone()));
+                }
             }
-            return out;
         }
-        let per = n.div_ceil(chunks);
-        (0..chunks)
-            .into_par_iter()
-            .map(|c| {
-                let mut out = vec![S::zero(); len];
-                for e in (c * per)..((c + 1) * per).min(n) {
-                    work(e, &mut out);
-                }
-                out
-            })
-            .reduce_with(|mut a, b| {
-                for (x, y) in a.iter_mut().zip(b) {
-                    *x = *x + y;
-                }
-                a
-            })
-            .unwrap_or_else(|| vec![S::zero(); len])
+    }
+
+    /// `work(element)` for every element, in element order (parallel unless sequential).
+    fn map_elements<T: Send>(&self, work: impl Fn(usize) -> T + Sync + Send) -> Vec<T> {
+        let n = self.mesh.elements.len();
+        match self.parallelism {
+            Parallelism::Sequential => (0..n).map(work).collect(),
+            Parallelism::Chunks(_) => (0..n).into_par_iter().map(work).collect(),
+        }
     }
 
     /// Gathers the element's nodal values: entry `k * field_count + f`.
@@ -234,19 +255,23 @@ impl<M: EnergyModel> Assembler<M> {
 
     /// Total energy $`\Pi = \sum_t \int \psi_t`$ of the global nodal values.
     pub fn energy<S: Scalar>(&self, global: &[S]) -> S {
-        let total = self.accumulate(1, |e, out: &mut [S]| {
+        let per_element = self.map_elements(|e| {
             let local = self.gather(e, global);
             let mut jet = [S::zero(); MAX_JET];
+            let mut sum = S::zero();
             for (t, term) in self.terms.iter().enumerate() {
                 let values = &self.value_sets[term.value_set].1[e];
                 let m = term.jet.len();
                 for q in 0..values.weights.len() {
                     self.jet_at(term, values, q, &local, &mut jet[..m]);
-                    out[0] = out[0] + self.model.energy(t, &jet[..m]) * values.weights[q];
+                    sum = sum + self.model.energy(t, &jet[..m]) * values.weights[q];
                 }
             }
+            sum
         });
-        total[0]
+        per_element
+            .into_iter()
+            .fold(S::zero(), |total, value| total + value)
     }
 
     /// Internal force vector of element `e` (local dofs `k * field_count + f`).
@@ -286,14 +311,16 @@ impl<M: EnergyModel> Assembler<M> {
     /// Internal forces $`\partial\Pi/\partial U_a`$ over the free dofs, from global nodal values
     /// (prescribed entries included in `global`).
     pub fn internal_forces<S: Scalar>(&self, global: &[S]) -> Vec<S> {
-        self.accumulate(self.dofs.free_count, |e, out: &mut [S]| {
+        let mut out = vec![S::zero(); self.dofs.free_count];
+        self.accumulate(&mut out, |e, sink| {
             let element = self.element_internal_forces(e, global);
             for (a, dof) in self.element_dofs[e].iter().enumerate() {
                 if let Some(i) = dof {
-                    out[*i] = out[*i] + element[a];
+                    sink.add(*i, element[a]);
                 }
             }
-        })
+        });
+        out
     }
 
     /// Internal forces and, in the same element loop, the force magnitudes
@@ -302,12 +329,13 @@ impl<M: EnergyModel> Assembler<M> {
     /// assembled internal force).
     pub fn internal_forces_and_magnitudes(&self, global: &[f64]) -> (Vec<f64>, Vec<f64>) {
         let n = self.dofs.free_count;
-        let mut both = self.accumulate(2 * n, |e, out: &mut [f64]| {
+        let mut both = vec![0.0; 2 * n];
+        self.accumulate(&mut both, |e, sink| {
             let element = self.element_internal_forces(e, global);
             for (a, dof) in self.element_dofs[e].iter().enumerate() {
                 if let Some(i) = dof {
-                    out[*i] += element[a];
-                    out[n + *i] += element[a].abs();
+                    sink.add(*i, element[a]);
+                    sink.add(n + *i, element[a].abs());
                 }
             }
         });
@@ -320,7 +348,8 @@ impl<M: EnergyModel> Assembler<M> {
     pub fn tangent_values<S: Scalar>(&self, global: &[S]) -> Vec<S> {
         let nf = self.dofs.field_count;
         let m_local = QUAD8_NODES * nf;
-        self.accumulate(self.pattern.nnz(), |e, out: &mut [S]| {
+        let mut out = vec![S::zero(); self.pattern.nnz()];
+        self.accumulate(&mut out, |e, sink| {
             let local = self.gather(e, global);
             let mut element = vec![S::zero(); m_local * m_local];
             let mut jet = [S::zero(); MAX_JET];
@@ -361,16 +390,184 @@ impl<M: EnergyModel> Assembler<M> {
             }
             for (slot, v) in self.element_slots[e].iter().zip(element) {
                 if let Some(s) = slot {
-                    out[*s] = out[*s] + v;
+                    sink.add(*s, v);
                 }
             }
-        })
+        });
+        out
     }
 
     /// Assembles the `f64` tangent into `matrix` (which must be on [`Self::pattern`]).
     pub fn assemble_tangent_into(&self, global: &[f64], matrix: &mut SparseMatrix) {
         let values = self.tangent_values(global);
         matrix.values.copy_from_slice(&values);
+    }
+
+    /// A zeroed tape for Taylor coefficients up to `highest_order` of every nonlinear term
+    /// (terms whose residual is affine in the jet contribute nothing to right-hand sides of
+    /// order ≥ 1 and get no tape). Its size is [`TaylorTape::bytes`].
+    pub fn taylor_tape(&self, highest_order: usize) -> TaylorTape {
+        let stride = highest_order + 1;
+        let spec = M::SPEC;
+        let mut layout = Vec::new();
+        let mut element_len = 0;
+        for (t, term) in self.terms.iter().enumerate() {
+            let term_spec = &spec.terms[t];
+            if term_spec.linear_residual || term_spec.taylor_slots == 0 {
+                continue;
+            }
+            let points = self.value_sets[term.value_set].1[0].weights.len();
+            layout.push(TapeBlock {
+                term: t,
+                slots: term_spec.taylor_slots,
+                offset: element_len,
+            });
+            element_len += points * term_spec.taylor_slots * stride;
+        }
+        TaylorTape {
+            stride,
+            layout,
+            element_len,
+            data: vec![0.0; element_len * self.mesh.elements.len()],
+        }
+    }
+
+    /// Runs `work(element, element's tape block)` over all elements (in parallel unless
+    /// sequential; blocks are disjoint).
+    fn for_each_tape_block(
+        &self,
+        tape: &mut TaylorTape,
+        work: impl Fn(usize, &mut [f64]) + Sync + Send,
+    ) {
+        if tape.element_len == 0 {
+            return;
+        }
+        let chunks = tape.data.chunks_mut(tape.element_len);
+        match self.parallelism {
+            Parallelism::Sequential => chunks.enumerate().for_each(|(e, b)| work(e, b)),
+            Parallelism::Chunks(_) => tape
+                .data
+                .par_chunks_mut(tape.element_len)
+                .enumerate()
+                .for_each(|(e, b)| work(e, b)),
+        }
+    }
+
+    /// Taylor mode, order 0: records the coefficients of order 0 at the global nodal values
+    /// `global` ([`EnergyModel::taylor_start`] at every point of every nonlinear term).
+    pub fn taylor_start(&self, global: &[f64], tape: &mut TaylorTape) {
+        self.taylor_sweep(global, tape, |t, jet, block, stride| {
+            self.model.taylor_start(t, jet, block, stride)
+        });
+    }
+
+    /// Taylor mode, order $`k \ge 1`$, after [`Self::taylor_predict`] at order $`k`$: records
+    /// the true order-$`k`$ coefficients for the order-$`k`$ global nodal values `increment`
+    /// (prescribed entries included, see [`DofMap::expand_increment`]).
+    pub fn taylor_commit(&self, order: usize, increment: &[f64], tape: &mut TaylorTape) {
+        assert!(order >= 1 && order < tape.stride, "order outside the tape");
+        self.taylor_sweep(increment, tape, |t, jet, block, stride| {
+            self.model.taylor_commit(t, order, jet, block, stride)
+        });
+    }
+
+    /// Calls `kernel(term, jet, point's tape, stride)` at every point of every taped term with
+    /// the jet of `global`.
+    fn taylor_sweep(
+        &self,
+        global: &[f64],
+        tape: &mut TaylorTape,
+        kernel: impl Fn(usize, &[f64], &mut [f64], usize) + Sync + Send,
+    ) {
+        let stride = tape.stride;
+        let layout = tape.layout.clone();
+        self.for_each_tape_block(tape, |e, block| {
+            let local = self.gather(e, global);
+            let mut jet = [0.0; MAX_JET];
+            for entry in &layout {
+                let term = &self.terms[entry.term];
+                let values = &self.value_sets[term.value_set].1[e];
+                let m = term.jet.len();
+                let per_point = entry.slots * stride;
+                for q in 0..values.weights.len() {
+                    self.jet_at(term, values, q, &local, &mut jet[..m]);
+                    let start = entry.offset + q * per_point;
+                    kernel(
+                        entry.term,
+                        &jet[..m],
+                        &mut block[start..start + per_point],
+                        stride,
+                    );
+                }
+            }
+        });
+    }
+
+    /// Taylor mode, order $`k \ge 1`$: the order-$`k`$ coefficient of the internal forces over
+    /// the free dofs when the order-$`k`$ unknowns are zero — minus the ANM right-hand side —
+    /// from orders $`0..k-1`$ on the tape ([`EnergyModel::taylor_predict`]).
+    pub fn taylor_predict(&self, order: usize, tape: &mut TaylorTape) -> Vec<f64> {
+        assert!(order >= 1 && order < tape.stride, "order outside the tape");
+        let nf = self.dofs.field_count;
+        let local_len = QUAD8_NODES * nf;
+        let stride = tape.stride;
+        let layout = tape.layout.clone();
+        let mut element_forces = vec![0.0; self.mesh.elements.len() * local_len];
+        if tape.element_len > 0 {
+            let work = |(block, forces): (&mut [f64], &mut [f64]), e: usize| {
+                let mut residual = [0.0; MAX_JET];
+                for entry in &layout {
+                    let term = &self.terms[entry.term];
+                    let values = &self.value_sets[term.value_set].1[e];
+                    let m = term.jet.len();
+                    let per_point = entry.slots * stride;
+                    for q in 0..values.weights.len() {
+                        let start = entry.offset + q * per_point;
+                        self.model.taylor_predict(
+                            entry.term,
+                            order,
+                            &mut block[start..start + per_point],
+                            stride,
+                            &mut residual[..m],
+                        );
+                        let w = values.weights[q];
+                        for (i, jet_entry) in term.jet.iter().enumerate() {
+                            let r = residual[i];
+                            if r == 0.0 {
+                                continue;
+                            }
+                            for k in 0..QUAD8_NODES {
+                                let b = shape_weight(values, q, k, jet_entry.derivative);
+                                forces[k * nf + jet_entry.field] += r * (b * w);
+                            }
+                        }
+                    }
+                }
+            };
+            let pairs = tape
+                .data
+                .chunks_mut(tape.element_len)
+                .zip(element_forces.chunks_mut(local_len));
+            match self.parallelism {
+                Parallelism::Sequential => pairs.enumerate().for_each(|(e, p)| work(p, e)),
+                Parallelism::Chunks(_) => tape
+                    .data
+                    .par_chunks_mut(tape.element_len)
+                    .zip(element_forces.par_chunks_mut(local_len))
+                    .enumerate()
+                    .for_each(|(e, p)| work(p, e)),
+            }
+        }
+        // Scatter in element order: the same sums for any thread count.
+        let mut out = vec![0.0; self.dofs.free_count];
+        for (e, forces) in element_forces.chunks(local_len).enumerate() {
+            for (a, dof) in self.element_dofs[e].iter().enumerate() {
+                if let Some(i) = dof {
+                    out[*i] += forces[a];
+                }
+            }
+        }
+        out
     }
 
     /// Calls `visit(term, element, q, point, weight, jet)` at every quadrature point of every term
@@ -393,6 +590,105 @@ impl<M: EnergyModel> Assembler<M> {
             }
         }
     }
+}
+
+/// Where one taped term's points live inside an element's block of a [`TaylorTape`].
+#[derive(Clone, Copy, Debug)]
+struct TapeBlock {
+    term: usize,
+    slots: usize,
+    offset: usize,
+}
+
+/// Per-quadrature-point tapes of the Taylor-mode kernels for one path-following step: for every
+/// element, every nonlinear term and every quadrature point, the coefficient history
+/// ([`TermSpec::taylor_slots`](crate::model::TermSpec) slots × (highest order + 1)).
+#[derive(Clone, Debug)]
+pub struct TaylorTape {
+    stride: usize,
+    layout: Vec<TapeBlock>,
+    element_len: usize,
+    data: Vec<f64>,
+}
+
+impl TaylorTape {
+    /// Memory held, in bytes.
+    pub fn bytes(&self) -> usize {
+        self.data.len() * std::mem::size_of::<f64>()
+    }
+    /// Highest order the tape holds.
+    pub fn highest_order(&self) -> usize {
+        self.stride - 1
+    }
+}
+
+/// Where one element adds its contributions during [`Assembler::accumulate`].
+///
+/// A raw view of the output shared by the elements of one colour. Sound because elements of one
+/// colour share no node, hence no dof and no matrix entry: each entry is written by at most one
+/// element of the colour being processed, and colours are processed one after the other.
+struct ElementSink<S> {
+    data: *mut S,
+    len: usize,
+}
+
+impl<S> Clone for ElementSink<S> {
+    fn clone(&self) -> Self {
+        ElementSink {
+            data: self.data,
+            len: self.len,
+        }
+    }
+}
+
+// SAFETY: see the type's documentation: concurrent elements write disjoint entries.
+unsafe impl<S: Send> Send for ElementSink<S> {}
+unsafe impl<S: Send> Sync for ElementSink<S> {}
+
+impl<S: Scalar> ElementSink<S> {
+    #[inline(always)]
+    fn add(&mut self, index: usize, value: S) {
+        assert!(index < self.len, "assembly index out of range");
+        // SAFETY: in bounds (checked), and no other element of the running colour writes
+        // `index` (elements of one colour share no dof).
+        unsafe {
+            let entry = self.data.add(index);
+            *entry = *entry + value;
+        }
+    }
+}
+
+/// Greedy colouring of the elements (in element order, smallest free colour) such that no two
+/// elements of a colour share a node. Deterministic; a structured Q8 mesh gets 4 colours.
+pub fn colour_elements(mesh: &Mesh) -> Vec<Vec<usize>> {
+    let mut elements_of_node: Vec<Vec<usize>> = vec![Vec::new(); mesh.nodes.len()];
+    for (e, nodes) in mesh.elements.iter().enumerate() {
+        for &n in nodes.iter() {
+            elements_of_node[n].push(e);
+        }
+    }
+    let mut colour_of = vec![usize::MAX; mesh.elements.len()];
+    let mut colours: Vec<Vec<usize>> = Vec::new();
+    let mut taken = Vec::new();
+    for (e, nodes) in mesh.elements.iter().enumerate() {
+        taken.clear();
+        for &n in nodes.iter() {
+            for &other in &elements_of_node[n] {
+                if colour_of[other] != usize::MAX {
+                    taken.push(colour_of[other]);
+                }
+            }
+        }
+        let colour = (0..)
+            .find(|c| !taken.contains(c))
+            .expect("a free colour exists");
+        if colour == colours.len() {
+            colours.push(Vec::new());
+        }
+        colours[colour].push(e);
+        colour_of[e] = colour;
+    }
+    colours
 }
 
 /// Most fields a model may have (element buffers are on the stack).

@@ -189,6 +189,18 @@ impl DofMap {
         out
     }
 
+    /// The global vector of an *increment* (a Taylor coefficient of order ≥ 1): free values
+    /// from `free_values`, prescribed values $`g_1\,\delta\lambda`$ (the fixed part $`g_0`$ does
+    /// not vary along a path).
+    pub fn expand_increment(&self, free_values: &[f64], load_increment: f64) -> Vec<f64> {
+        (0..self.node_count * self.field_count)
+            .map(|g| match self.free_index[g] {
+                Some(k) => free_values[k],
+                None => load_increment * self.prescribed_value_per_load[g],
+            })
+            .collect()
+    }
+
     /// The free values extracted from a global vector.
     pub fn restrict<S: Scalar>(&self, global: &[S]) -> Vec<S> {
         self.free_to_global.iter().map(|&g| global[g]).collect()

@@ -6,7 +6,7 @@ pub mod element;
 pub mod loads;
 pub mod mesh;
 
-pub use assembly::{Assembler, Parallelism};
+pub use assembly::{Assembler, Parallelism, TaylorTape};
 pub use dofs::{DirichletCondition, DofMap};
 pub use element::{ElementValues, GaussRule, Quad8};
 pub use loads::{BodyLoad, EdgeTraction, LoadVectors};

@@ -44,6 +44,9 @@ pub struct BucklingOptions {
     pub accept_unconverged: bool,
     /// Seed of the deterministic pseudo-random start vector.
     pub seed: u64,
+    /// A start vector (warm start, e.g. the mode of a nearby problem); a pseudo-random one when
+    /// `None` or when it does not fit.
+    pub start: Option<Vec<f64>>,
 }
 
 impl Default for BucklingOptions {
@@ -55,6 +58,7 @@ impl Default for BucklingOptions {
             max_restarts: 300,
             accept_unconverged: false,
             seed: 0x5eed_0fb0_c1a5,
+            start: None,
         }
     }
 }
@@ -402,7 +406,14 @@ pub fn smallest_positive_buckling(
         b_vectors: Vec::new(),
         c_vectors: Vec::new(),
     };
-    if !basis.expand(&mut operator, &mut random)? {
+    let warm = match &options.start {
+        Some(start) if start.len() == n && start.iter().all(|v| v.is_finite()) => {
+            let reference = dot(start, &operator.apply_a(start)?).abs().sqrt();
+            basis.try_push(start.clone(), reference, &mut operator)?
+        }
+        _ => false,
+    };
+    if !warm && !basis.expand(&mut operator, &mut random)? {
         return Err(LinearError::NoPositiveLoadFactor {
             most_negative_ritz_value: 0.0,
         });

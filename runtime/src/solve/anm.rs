@@ -26,6 +26,7 @@ use super::error::SolveError;
 use super::newton::NewtonOptions;
 use super::path::{PathControl, PathEvent, PathResult, PathState, PathStatistics, PathStop};
 use super::riks::{ArcLengthConstraint, RiksOptions, correct_on_arc};
+use crate::fem::TaylorTape;
 use crate::linear::eigen::{BucklingOptions, smallest_positive_buckling};
 use crate::linear::factor::SparseFactorization;
 use crate::linear::pattern::SparseMatrix;
@@ -110,18 +111,15 @@ pub struct AnmStep {
     pub predicted_bifurcation: Option<f64>,
 }
 
-/// Computes the series of one step at `state`, whose tangent `factor` holds.
-/// Returns the path series (orders 0..=N) and $`\hat U`$.
-pub fn compute_series<M: EnergyModel>(
+/// Order 1 of a step: $`\hat U = K_t^{-1}F`$, $`\lambda_1 = \pm(1+\|\hat U\|^2)^{-1/2}`$, the sign
+/// chosen so that $`(U_1, \lambda_1)`$ continues `previous_direction` (the path tangent at the
+/// end of the previous step), else $`\lambda_1 > 0`$. Returns $`(\hat U, \lambda_1)`$.
+fn first_order<M: EnergyModel>(
     problem: &Problem<M>,
     state: &PathState,
     factor: &SparseFactorization,
-    order: usize,
     previous_direction: Option<(&[f64], f64)>,
-) -> Result<(PathSeries, Vec<f64>), SolveError> {
-    let n = problem.free_count();
-    let order = order.clamp(2, MAX_SERIES_LEN - 2);
-    // Order 1.
+) -> Result<(Vec<f64>, f64), SolveError> {
     let mut u_hat: Vec<f64> = problem
         .load_derivative(&state.displacement, state.load)
         .iter()
@@ -136,12 +134,104 @@ pub fn compute_series<M: EnergyModel>(
     let norm2: f64 = u_hat.iter().map(|v| v * v).sum();
     let mut lambda1 = 1.0 / (1.0 + norm2).sqrt();
     if let Some((u_prev, l_prev)) = previous_direction {
-        let dot: f64 =
-            u_hat.iter().zip(u_prev).map(|(a, b)| a * b).sum::<f64>() * lambda1 + lambda1 * l_prev;
+        let dot: f64 = u_hat.iter().zip(u_prev).map(|(a, b)| a * b).sum::<f64>() + l_prev;
         if dot < 0.0 {
             lambda1 = -lambda1;
         }
     }
+    Ok((u_hat, lambda1))
+}
+
+/// Order $`k \ge 2`$ from its right-hand side $`F^{nl}_k`$ (overwritten): solve
+/// $`K_t\hat U_k = F^{nl}_k`$, then $`\lambda_k = -\lambda_1\langle\hat U_k, U_1\rangle`$,
+/// $`U_k = \hat U_k + \lambda_k\hat U`$.
+fn higher_order(
+    factor: &SparseFactorization,
+    mut rhs: Vec<f64>,
+    u_hat: &[f64],
+    u1: &[f64],
+    lambda1: f64,
+    k: usize,
+    load: f64,
+) -> Result<(Vec<f64>, f64), SolveError> {
+    if rhs.iter().any(|v| !v.is_finite()) {
+        return Err(SolveError::NonFinite {
+            location: format!("ANM right-hand side of order {k} at load {load:.6e}"),
+        });
+    }
+    factor
+        .solve_in_place(&mut rhs)
+        .map_err(SolveError::linear(format!(
+            "ANM order {k} at load {load:.6e}"
+        )))?;
+    let dot: f64 = rhs.iter().zip(u1).map(|(a, b)| a * b).sum();
+    let lambda_k = -lambda1 * dot;
+    for (r, h) in rhs.iter_mut().zip(u_hat) {
+        *r += lambda_k * h;
+    }
+    Ok((rhs, lambda_k))
+}
+
+/// Computes the series of one step at `state`, whose tangent `factor` holds, with the models'
+/// Taylor-mode kernels: per order one right-hand side from the tape ($`O(k)`$ per product at
+/// every quadrature point), one solve, one commit. `tape` must hold at least `order` orders.
+/// Returns the path series (orders 0..=N) and $`\hat U`$.
+pub fn compute_series<M: EnergyModel>(
+    problem: &Problem<M>,
+    state: &PathState,
+    factor: &SparseFactorization,
+    order: usize,
+    previous_direction: Option<(&[f64], f64)>,
+    tape: &mut TaylorTape,
+) -> Result<(PathSeries, Vec<f64>), SolveError> {
+    let order = order.clamp(2, tape.highest_order());
+    let (u_hat, lambda1) = first_order(problem, state, factor, previous_direction)?;
+    let u1: Vec<f64> = u_hat.iter().map(|v| v * lambda1).collect();
+    problem.taylor_start(&state.displacement, state.load, tape);
+    // Order 1: the prediction is zero (every coefficient of order 1 is linear in U_1).
+    problem.taylor_residual(1, tape);
+    problem.taylor_commit(1, &u1, lambda1, tape);
+    let mut displacement = vec![state.displacement.clone(), u1];
+    let mut load = vec![state.load, lambda1];
+    for k in 2..=order {
+        let rhs: Vec<f64> = problem
+            .taylor_residual(k, tape)
+            .iter()
+            .map(|r| -r)
+            .collect();
+        let (u_k, lambda_k) = higher_order(
+            factor,
+            rhs,
+            &u_hat,
+            &displacement[1],
+            lambda1,
+            k,
+            state.load,
+        )?;
+        problem.taylor_commit(k, &u_k, lambda_k, tape);
+        displacement.push(u_k);
+        load.push(lambda_k);
+    }
+    let series = PathSeries::new(displacement, load).map_err(|e| SolveError::Path {
+        load: state.load,
+        message: format!("series: {e}"),
+    })?;
+    Ok((series, u_hat))
+}
+
+/// [`compute_series`] through the generic kernels on truncated [`Series`]: the residual of
+/// $`\sum_{j<k} a^j U_j`$ evaluated to order $`k`$ at every order ($`O(N^3)`$ per step). Kept
+/// as the reference the Taylor-mode kernels are tested against.
+pub fn compute_series_generic<M: EnergyModel>(
+    problem: &Problem<M>,
+    state: &PathState,
+    factor: &SparseFactorization,
+    order: usize,
+    previous_direction: Option<(&[f64], f64)>,
+) -> Result<(PathSeries, Vec<f64>), SolveError> {
+    let n = problem.free_count();
+    let order = order.clamp(2, MAX_SERIES_LEN - 2);
+    let (u_hat, lambda1) = first_order(problem, state, factor, previous_direction)?;
     let u1: Vec<f64> = u_hat.iter().map(|v| v * lambda1).collect();
     let mut displacement = vec![state.displacement.clone(), u1];
     let mut load = vec![state.load, lambda1];
@@ -155,33 +245,18 @@ pub fn compute_series<M: EnergyModel>(
             }
         }
         let mut load_series = Series::zeros(k + 1);
-        {
-            let c = load_series.coefficients_mut();
-            c[..k].copy_from_slice(&load);
-        }
+        load_series.coefficients_mut()[..k].copy_from_slice(&load);
         let residual = problem.residual(&free, load_series);
-        let mut rhs: Vec<f64> = residual.iter().map(|r| -r.coefficient(k)).collect();
-        if rhs.iter().any(|v| !v.is_finite()) {
-            return Err(SolveError::NonFinite {
-                location: format!(
-                    "ANM right-hand side of order {k} at load {:.6e}",
-                    state.load
-                ),
-            });
-        }
-        factor
-            .solve_in_place(&mut rhs)
-            .map_err(SolveError::linear(format!(
-                "ANM order {k} at load {:.6e}",
-                state.load
-            )))?;
-        let dot: f64 = rhs.iter().zip(&displacement[1]).map(|(a, b)| a * b).sum();
-        let lambda_k = -lambda1 * dot;
-        let u_k: Vec<f64> = rhs
-            .iter()
-            .zip(&u_hat)
-            .map(|(r, h)| r + lambda_k * h)
-            .collect();
+        let rhs: Vec<f64> = residual.iter().map(|r| -r.coefficient(k)).collect();
+        let (u_k, lambda_k) = higher_order(
+            factor,
+            rhs,
+            &u_hat,
+            &displacement[1],
+            lambda1,
+            k,
+            state.load,
+        )?;
         displacement.push(u_k);
         load.push(lambda_k);
     }
@@ -214,6 +289,9 @@ pub fn follow_path_anm<M: EnergyModel>(
     let begin = Instant::now();
     let mut statistics = PathStatistics::default();
     let mut matrix = problem.new_matrix();
+    let mut tape = problem
+        .assembler
+        .taylor_tape(options.order.clamp(2, MAX_SERIES_LEN - 2));
     let mut state = start;
     let mut bifurcation = None;
     let mut previous: Option<(Vec<f64>, f64)> = None;
@@ -262,7 +340,7 @@ pub fn follow_path_anm<M: EnergyModel>(
         let t = Instant::now();
         let direction = previous.as_ref().map(|(u, l)| (u.as_slice(), *l));
         let (series, u_hat) =
-            match compute_series(problem, &state, factor, options.order, direction) {
+            match compute_series(problem, &state, factor, options.order, direction, &mut tape) {
                 Ok(s) => s,
                 Err(e) => return finish(state, statistics, PathStop::Failed(e), bifurcation),
             };
@@ -412,7 +490,9 @@ pub fn follow_path_anm<M: EnergyModel>(
             predicted_bifurcation: predicted,
         });
         statistics.steps = step;
-        previous = Some((series.displacement[1].clone(), series.load[1]));
+        // The next step continues the path tangent at this step's end (not at its start: past a
+        // sharp turn the two can point apart).
+        previous = Some(series.evaluate_derivative(a));
         state = end;
         if observer(&PathEvent {
             step,

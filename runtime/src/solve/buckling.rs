@@ -40,8 +40,11 @@ pub struct LinearBucklingOptions {
     pub reference_load: f64,
     /// Newton settings for the pre-buckling state.
     pub newton: NewtonOptions,
-    /// Eigen-solver settings.
+    /// Eigen-solver settings (including an optional warm-start vector).
     pub eigen: BucklingOptions,
+    /// A guess of the pre-buckling state (e.g. that of a nearby parameter value); zero when
+    /// `None`.
+    pub initial_state: Option<Vec<f64>>,
 }
 
 impl Default for LinearBucklingOptions {
@@ -50,6 +53,7 @@ impl Default for LinearBucklingOptions {
             reference_load: 0.0,
             newton: NewtonOptions::default(),
             eigen: BucklingOptions::default(),
+            initial_state: None,
         }
     }
 }
@@ -64,7 +68,11 @@ pub fn linear_buckling<M: EnergyModel>(
     let n = problem.free_count();
     let load = options.reference_load;
     let mut a = problem.new_matrix();
-    let pre = newton(problem, vec![0.0; n], load, factor, &mut a, &options.newton)?;
+    let initial = match &options.initial_state {
+        Some(state) if state.len() == n => state.clone(),
+        _ => vec![0.0; n],
+    };
+    let pre = newton(problem, initial, load, factor, &mut a, &options.newton)?;
     problem.tangent_into(&pre.solution, load, &mut a);
     factor.factorize(&a).map_err(SolveError::linear(
         "linear buckling: factorisation of the pre-buckling tangent",

@@ -10,3 +10,4 @@ pub mod anm;
 pub mod ellipticity;
 pub mod path;
 pub mod riks;
+pub mod wavenumber;

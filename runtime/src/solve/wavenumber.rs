@@ -1,0 +1,306 @@
+//! The critical load minimised over a model parameter — the wavenumber $`Q`$ of the envelope
+//! models, whose threshold $`\lambda_c(Q)`$ selects the wrinkle wavelength (THEORY.md §8).
+//!
+//! **Global, then local.** $`\lambda_c(Q)`$ is first sampled on a logarithmic scan over the whole
+//! range where the caller says the model is valid (a local bracket around a guess can miss the
+//! minimum by orders of magnitude when the tension is tiny or huge), then refined by Brent's
+//! method in the best bracket. Each evaluation is a linear buckling analysis; it is
+//! **warm-started** from its neighbour — the pre-buckling state as Newton's initial guess, the
+//! mode as the Lanczos start vector — so a scan costs a small multiple of one analysis.
+//!
+//! **Accuracy the load can carry.** $`\lambda_c(Q)`$ is flat to second order at its minimum: a
+//! relative error $`\delta`$ in $`Q`$ changes $`\lambda_c`$ by $`O(\delta^2)`$, so $`Q`$ is located to
+//! [`WavenumberSearchOptions::relative_tolerance`] ($`10^{-4}`$ by default, $`\lambda_c`$ to about
+//! $`10^{-8}`$) and no further.
+//!
+//! **Validity.** Below some $`Q`$ an envelope model stops being strongly elliptic at its own
+//! critical load (the X-diffusion $`6DQ^2 - \lambda`$ of eq. (32) turns negative); the lowest
+//! discrete eigenvalue is then a mesh-scale mode, not a threshold. Such evaluations are rejected
+//! (Legendre–Hadamard check of the generated tangent over more than
+//! [`WavenumberSearchOptions::max_violated_fraction`] of the area) and recorded with the reason.
+
+use super::brent::minimize_scalar;
+use super::buckling::{LinearBuckling, LinearBucklingOptions, linear_buckling};
+use super::ellipticity::{EllipticityReport, legendre_hadamard};
+use super::error::SolveError;
+use crate::linear::factor::SparseFactorization;
+use crate::model::EnergyModel;
+use crate::problem::Problem;
+
+/// Settings of [`minimise_critical_load`].
+#[derive(Clone, Debug)]
+pub struct WavenumberSearchOptions {
+    /// Name of the model parameter to vary.
+    pub parameter: &'static str,
+    /// Smallest and largest values to scan (the range where the model is valid).
+    pub range: (f64, f64),
+    /// Log-spaced scan points over `range` (at least 3).
+    pub scan_points: usize,
+    /// Relative accuracy of the minimiser in the parameter.
+    pub relative_tolerance: f64,
+    /// Area fraction where the Legendre–Hadamard condition may fail at a critical load before
+    /// the evaluation is rejected as a mesh-scale mode. Failures at isolated points (stress
+    /// singularities at clamped–free corners) do not disqualify a wavenumber.
+    pub max_violated_fraction: f64,
+    /// Settings of each linear buckling analysis.
+    pub buckling: LinearBucklingOptions,
+}
+
+impl Default for WavenumberSearchOptions {
+    fn default() -> Self {
+        let mut buckling = LinearBucklingOptions::default();
+        // The load factor's error is about the square of the Ritz residual.
+        buckling.eigen.tolerance = 1e-8;
+        WavenumberSearchOptions {
+            parameter: "wavenumber",
+            range: (1e-3, 1e3),
+            scan_points: 25,
+            relative_tolerance: 1e-4,
+            max_violated_fraction: 1e-2,
+            buckling,
+        }
+    }
+}
+
+/// One evaluation of $`\lambda_c`$ during the search.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WavenumberEvaluation {
+    /// Parameter value.
+    pub parameter: f64,
+    /// Critical load, when the evaluation is accepted.
+    pub critical_load: Option<f64>,
+    /// Why it was rejected (loss of ellipticity, no buckling load, solver failure).
+    pub rejected: Option<String>,
+    /// Operator applications of the eigen-solver.
+    pub eigen_iterations: usize,
+    /// Whether this evaluation belongs to the initial scan (else to the refinement).
+    pub scan: bool,
+}
+
+/// Outcome of [`minimise_critical_load`].
+#[derive(Clone, Debug)]
+pub struct WavenumberSearch {
+    /// The minimising parameter value.
+    pub parameter: f64,
+    /// The linear buckling analysis at that value (the model in `problem` is left set to it).
+    pub buckling: LinearBuckling,
+    /// Legendre–Hadamard check at the critical load.
+    pub ellipticity: EllipticityReport,
+    /// Every evaluation, in order.
+    pub evaluations: Vec<WavenumberEvaluation>,
+}
+
+/// The state at the first critical load: the pre-buckling state extrapolated linearly from the
+/// reference load to $`\lambda_c`$.
+pub fn state_at_critical_load(buckling: &LinearBuckling, reference_load: f64) -> Vec<f64> {
+    let mu = buckling.critical_loads[0] - reference_load;
+    buckling
+        .prebuckling
+        .iter()
+        .zip(&buckling.prebuckling_rate)
+        .map(|(u, r)| u + mu * r)
+        .collect()
+}
+
+/// Legendre–Hadamard check of `problem` at the first critical load of `buckling`.
+pub fn ellipticity_at_critical_load<M: EnergyModel>(
+    problem: &Problem<M>,
+    buckling: &LinearBuckling,
+    reference_load: f64,
+) -> EllipticityReport {
+    let state = state_at_critical_load(buckling, reference_load);
+    legendre_hadamard(problem, &state, buckling.critical_loads[0])
+}
+
+/// Sets the model parameter `name` of `problem` to `value` (same model type: pattern, element
+/// values and symbolic factorisation stay valid).
+pub fn set_model_parameter<M: EnergyModel>(
+    problem: &mut Problem<M>,
+    name: &str,
+    value: f64,
+) -> Result<(), SolveError> {
+    let mut model = problem.assembler.model().clone();
+    model
+        .set_parameter(name, value)
+        .map_err(SolveError::Buckling)?;
+    problem.assembler.set_model(model);
+    Ok(())
+}
+
+/// The search state: warm starts and the best analysis so far.
+struct Searcher<'a, M: EnergyModel> {
+    problem: &'a mut Problem<M>,
+    factor: &'a mut SparseFactorization,
+    options: &'a WavenumberSearchOptions,
+    observer: &'a mut dyn FnMut(&WavenumberEvaluation),
+    evaluations: Vec<WavenumberEvaluation>,
+    warm_state: Option<Vec<f64>>,
+    warm_mode: Option<Vec<f64>>,
+    best: Option<(f64, LinearBuckling, EllipticityReport)>,
+    scanning: bool,
+}
+
+impl<M: EnergyModel> Searcher<'_, M> {
+    /// $`\lambda_c`$ at `parameter`, or $`+\infty`$ when rejected (reason recorded).
+    fn evaluate(&mut self, parameter: f64) -> f64 {
+        let mut record = WavenumberEvaluation {
+            parameter,
+            critical_load: None,
+            rejected: None,
+            eigen_iterations: 0,
+            scan: self.scanning,
+        };
+        let value = match self.analyse(parameter) {
+            Ok((buckling, ellipticity)) => {
+                record.eigen_iterations = buckling.eigen_iterations;
+                let load = buckling.critical_loads[0];
+                self.warm_state = Some(buckling.prebuckling.clone());
+                self.warm_mode = buckling.modes.first().cloned();
+                if ellipticity.violated_fraction > self.options.max_violated_fraction {
+                    record.rejected = Some(format!(
+                        "not elliptic at its critical load {load:.6e} over {:.1} % of the area (worst at ({:.4}, {:.4}), field `{}`): a mesh-scale mode, not a threshold",
+                        100.0 * ellipticity.violated_fraction,
+                        ellipticity.location[0],
+                        ellipticity.location[1],
+                        ellipticity.field
+                    ));
+                    f64::INFINITY
+                } else {
+                    record.critical_load = Some(load);
+                    if self
+                        .best
+                        .as_ref()
+                        .is_none_or(|(_, b, _)| load < b.critical_loads[0])
+                    {
+                        self.best = Some((parameter, buckling, ellipticity));
+                    }
+                    load
+                }
+            }
+            Err(error) => {
+                record.rejected = Some(error.to_string());
+                f64::INFINITY
+            }
+        };
+        (self.observer)(&record);
+        self.evaluations.push(record);
+        value
+    }
+
+    fn analyse(
+        &mut self,
+        parameter: f64,
+    ) -> Result<(LinearBuckling, EllipticityReport), SolveError> {
+        set_model_parameter(self.problem, self.options.parameter, parameter)?;
+        let mut options = self.options.buckling.clone();
+        options.initial_state = self.warm_state.clone();
+        options.eigen.start = self.warm_mode.clone();
+        let buckling = linear_buckling(self.problem, self.factor, &options)?;
+        let ellipticity =
+            ellipticity_at_critical_load(self.problem, &buckling, options.reference_load);
+        Ok((buckling, ellipticity))
+    }
+}
+
+/// Minimises the first critical load of `problem` over the model parameter
+/// `options.parameter` (see the module documentation). `observer` sees every evaluation (a
+/// progress display). On success the model in `problem` is set to the minimiser.
+///
+/// # Errors
+/// [`SolveError::Buckling`] when no value in the range gives an acceptable critical load; the
+/// message lists why the scan points were rejected.
+pub fn minimise_critical_load<M: EnergyModel>(
+    problem: &mut Problem<M>,
+    factor: &mut SparseFactorization,
+    options: &WavenumberSearchOptions,
+    observer: &mut dyn FnMut(&WavenumberEvaluation),
+) -> Result<WavenumberSearch, SolveError> {
+    let (low, high) = options.range;
+    if !(low > 0.0 && high > low && low.is_finite() && high.is_finite()) {
+        return Err(SolveError::Buckling(format!(
+            "invalid range [{low:e}, {high:e}] for `{}`",
+            options.parameter
+        )));
+    }
+    let points = options.scan_points.max(3);
+    let ratio = (high / low).powf(1.0 / (points - 1) as f64);
+    let scan: Vec<f64> = (0..points).map(|k| low * ratio.powi(k as i32)).collect();
+    let mut searcher = Searcher {
+        problem,
+        factor,
+        options,
+        observer,
+        evaluations: Vec::new(),
+        warm_state: None,
+        warm_mode: None,
+        best: None,
+        scanning: true,
+    };
+    let values: Vec<f64> = scan.iter().map(|&q| searcher.evaluate(q)).collect();
+    let best = (0..points)
+        .min_by(|&a, &b| values[a].total_cmp(&values[b]))
+        .expect("the scan is not empty");
+    if !values[best].is_finite() {
+        return Err(SolveError::Buckling(no_threshold_message(
+            options,
+            &searcher.evaluations,
+        )));
+    }
+    // Refine in the bracket around the best scan point, warm-started from it.
+    if let Some((_, buckling, _)) = &searcher.best {
+        searcher.warm_state = Some(buckling.prebuckling.clone());
+        searcher.warm_mode = buckling.modes.first().cloned();
+    }
+    searcher.scanning = false;
+    let bracket_low = if best == 0 {
+        low / ratio
+    } else {
+        scan[best - 1]
+    };
+    let bracket_high = if best + 1 == points {
+        high * ratio
+    } else {
+        scan[best + 1]
+    };
+    minimize_scalar(
+        |q| Ok::<f64, SolveError>(searcher.evaluate(q)),
+        bracket_low,
+        bracket_high,
+        options.relative_tolerance * scan[best],
+        100,
+    )?;
+    let (parameter, buckling, ellipticity) =
+        searcher.best.take().expect("an accepted evaluation exists");
+    let evaluations = searcher.evaluations;
+    set_model_parameter(problem, options.parameter, parameter)?;
+    Ok(WavenumberSearch {
+        parameter,
+        buckling,
+        ellipticity,
+        evaluations,
+    })
+}
+
+/// Why no threshold was found: the range and a summary of the rejections.
+fn no_threshold_message(
+    options: &WavenumberSearchOptions,
+    evaluations: &[WavenumberEvaluation],
+) -> String {
+    let mut reasons: Vec<String> = Vec::new();
+    for evaluation in evaluations {
+        if let Some(reason) = &evaluation.rejected {
+            let short = reason.split(':').next().unwrap_or(reason).to_string();
+            if !reasons.contains(&short) {
+                reasons.push(short);
+            }
+        }
+    }
+    format!(
+        "no acceptable critical load for `{}` anywhere in [{:.4e}, {:.4e}] ({} evaluations); rejections: {}",
+        options.parameter,
+        options.range.0,
+        options.range.1,
+        evaluations.len(),
+        reasons.join("; ")
+    )
+}
