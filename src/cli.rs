@@ -1,9 +1,10 @@
-//! The `wrinkle` command line: argument parsing (clap derive) and the four subcommands.
+//! The `wrinkle` command line: argument parsing (clap derive) and the subcommands.
 //!
 //! Every failure prints one line `error: …` on stderr and exits with [`Error::exit_code`]
 //! (2 for scene and usage errors, 1 for solver failures); usage errors found by clap exit with 2.
 
 use crate::Error;
+use crate::analytic;
 use crate::closed_form;
 use crate::commands;
 use crate::scene::{LoadKind, Scene};
@@ -41,6 +42,20 @@ pub enum Command {
         /// Output directory (overrides `output.directory`).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
+    },
+    /// Closed forms of the clamped rectangle in biaxial load (THEORY.md §8): exact minimum of
+    /// (42), approximations (44) and (96), Galerkin integrals, amplitude law (61)–(62) and a
+    /// converged multi-term Galerkin solution of (55). See docs/analytic.md.
+    Analytic {
+        /// Scene and overrides.
+        #[command(flatten)]
+        scene: SceneArguments,
+        /// Print exactly one JSON object on stdout instead of a human summary.
+        #[arg(long)]
+        json: bool,
+        /// Also reproduce Table 1 of the paper (printed vs computed, ν = 0.3 and 0).
+        #[arg(long)]
+        table_1: bool,
     },
     /// List the registered models with their fields and parameters.
     Models,
@@ -132,6 +147,23 @@ pub fn execute(command: &Command) -> Result<(), Error> {
             );
             eprintln!("run finished; outputs in {}", directory.display());
             Ok(())
+        }
+        Command::Analytic {
+            scene,
+            json,
+            table_1,
+        } => {
+            let scene = scene.resolve()?;
+            let options = analytic::AnalyticOptions {
+                table_1: *table_1,
+                ..analytic::AnalyticOptions::default()
+            };
+            let report = analytic::analyse(&scene, &options)?;
+            if *json {
+                print_stdout(&format!("{}\n", report.to_json(&scene)))
+            } else {
+                print_stdout(&report.summary(&scene))
+            }
         }
         Command::Models => print_stdout(&models_listing(&commands::models())),
         Command::Scene { scene } => print_stdout(&scene.resolve()?.to_toml_string()),

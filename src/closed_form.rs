@@ -6,11 +6,13 @@
 //! $`w = \sin(\pi X/L_X)\sin(\pi Y/L_Y)`$ in the linearised envelope equation (32) the neutral
 //! curve is (42)
 //! $$`\lambda(Q) = \frac{6DQ^2\pi^2/L_X^2 + (2DQ^2 + N_Y)\pi^2/L_Y^2 + DQ^4}{Q^2 + \pi^2/L_X^2}.`$$
+//!
+//! The post-bifurcation coefficient $`C(\alpha)`$ of (62) is a one-term Galerkin approximation of
+//! the stress-function problem (55); [`stress_function`] solves that problem with many terms.
+
+pub mod stress_function;
 
 use std::f64::consts::PI;
-
-/// Number of Gauss–Legendre points per direction used for the Galerkin integrals.
-pub const GALERKIN_POINTS: usize = 48;
 
 /// Bending stiffness $`D = E h^3 / (12 (1 - \nu^2))`$ (N·mm).
 pub fn bending_stiffness(young_modulus: f64, thickness: f64, poisson_ratio: f64) -> f64 {
@@ -79,19 +81,37 @@ impl ClampedRectangle {
 
     /// Exact minimiser of (42): returns $`(\lambda_c, Q_c)`$.
     ///
-    /// With $`s = Q^2`$, $`d\lambda/ds = (D s^2 + 2Dc\,s + ac - b)/(s + c)^2`$, whose positive
-    /// root is $`s^* = -c + \sqrt{c^2 - (ac - b)/D}`$. Returns `None` when $`b \le ac`$ (tension
-    /// too small): then $`\lambda`$ increases with $`Q`$ and has no wrinkling minimum.
+    /// Written in $`s = Q^2`$, (42) is the rational function
+    /// $`\lambda(s) = (D s^2 + a s + b)/(s + c)`$ (see `neutral_curve_coefficients`), so
+    /// $$`\frac{d\lambda}{ds} = \frac{(2Ds + a)(s + c) - (Ds^2 + as + b)}{(s + c)^2}
+    ///   = \frac{D s^2 + 2Dc\,s + (ac - b)}{(s + c)^2}.`$$
+    /// Stationarity is the quadratic $`s^2 + 2c\,s - \delta = 0`$ with
+    /// $`\delta = (b - ac)/D`$, whose only positive root is
+    /// $`s^* = -c + \sqrt{c^2 + \delta} = \delta/(c + \sqrt{c^2 + \delta})`$ (the second form has
+    /// no cancellation). It is a minimum: the numerator grows with $`s`$, so $`\lambda`$ falls
+    /// on $`(0, s^*)`$ and rises after. The root is polished by Newton's method on the
+    /// quadratic (at most 4 steps, stopping when the step is below $`10^{-16} s^*`$), so
+    /// $`Q_c = \sqrt{s^*}`$ and $`\lambda_c = \lambda(s^*)`$ are accurate to rounding
+    /// (~1e-15 relative; the brute-force scan of `tests/closed_form_table1.rs` agrees to 1e-9).
+    ///
+    /// Returns `None` when $`\delta \le 0`$, i.e. $`N_Y \le D\pi^2/L_X^2\,(6L_Y^2/L_X^2 + 2)`$
+    /// (tension too small): then $`\lambda`$ increases with $`Q`$ and has no wrinkling minimum.
     pub fn critical_point(&self) -> Option<(f64, f64)> {
         let stiffness = self.bending_stiffness();
         let (linear, constant, shift) = self.neutral_curve_coefficients();
-        let discriminant = shift * shift - (linear * shift - constant) / stiffness;
-        if !(discriminant.is_finite() && discriminant > shift * shift) {
+        let excess = (constant - linear * shift) / stiffness;
+        if !(excess.is_finite() && excess > 0.0) {
             return None;
         }
-        // s* = −c + √(c² + δ) with δ > 0, written without cancellation: δ / (c + √(c² + δ)).
-        let excess = discriminant - shift * shift;
-        let square = excess / (shift + discriminant.sqrt());
+        let mut square = excess / (shift + (shift * shift + excess).sqrt());
+        for _ in 0..4 {
+            let residual = (square + 2.0 * shift) * square - excess;
+            let step = residual / (2.0 * (square + shift));
+            square -= step;
+            if step.abs() <= 1e-16 * square {
+                break;
+            }
+        }
         let wavenumber = square.sqrt();
         Some((self.neutral_curve(wavenumber), wavenumber))
     }
@@ -212,36 +232,34 @@ pub struct GalerkinIntegrals {
     pub i4: f64,
 }
 
-/// Galerkin integrals on $`[-1, 1]^2`$ with $`W = (1-r^2)^2(1-s^2)^2`$ and
-/// $`w^{(1)} = \cos(\pi r/2)\cos(\pi s/2)`$, by tensor Gauss–Legendre quadrature with
-/// [`GALERKIN_POINTS`] points per direction.
+/// Galerkin integrals on $`[-1, 1]^2`$ with $`W = f(r) f(s)`$, $`f(x) = (1-x^2)^2`$, and
+/// $`w^{(1)} = \cos(\pi r/2)\cos(\pi s/2)`$, in closed form.
+///
+/// Every integrand is a product of a function of $`r`$ and one of $`s`$, and the one-dimensional
+/// moments are (repeated integration by parts; $`f`$ and $`f'`$ vanish at $`\pm 1`$, so
+/// $`\int f''\cos\pi x = -\pi^2\int f\cos\pi x`$)
+/// $$`\int f = \tfrac{16}{15},\quad \int f^2 = \tfrac{256}{315},\quad
+///   \int f''^2 = \tfrac{128}{5},\quad \int f f'' = -\tfrac{256}{105},\quad
+///   \int f\cos\pi x = \tfrac{48}{\pi^4},\quad \int f''\cos\pi x = -\tfrac{48}{\pi^2}.`$$
+/// With $`1 - \cos\pi(1+r) = 1 + \cos\pi r`$, $`\cos\pi(1+s) = -\cos\pi s`$ and
+/// $`\cos^2(\pi x/2) = (1 + \cos\pi x)/2`$:
+/// $$`I_1(\alpha) = (1 + \alpha^4)\,\tfrac{128}{5}\cdot\tfrac{256}{315} +
+///   2\alpha^2\left(\tfrac{256}{105}\right)^2,\qquad
+///   I_2 = -\left(\tfrac{16}{15} + \tfrac{48}{\pi^4}\right)\tfrac{48}{\pi^4},`$$
+/// $$`I_3 = 1,\qquad I_4 = -\tfrac{12}{\pi^2}\left(\tfrac{16}{15} + \tfrac{48}{\pi^4}\right)
+///   = \tfrac{\pi^2}{4} I_2.`$$
+/// (`tests/closed_form_table1.rs` checks them against 64-point Gauss quadrature.)
 pub fn galerkin_integrals(aspect_ratio: f64) -> GalerkinIntegrals {
-    let (nodes, weights) = gauss_legendre(GALERKIN_POINTS);
     let alpha_squared = aspect_ratio * aspect_ratio;
-    let mut integrals = GalerkinIntegrals {
-        i1: 0.0,
-        i2: 0.0,
-        i3: 0.0,
-        i4: 0.0,
-    };
-    for (r, weight_r) in nodes.iter().zip(&weights) {
-        for (s, weight_s) in nodes.iter().zip(&weights) {
-            let weight = weight_r * weight_s;
-            let bubble_r = (1.0 - r * r).powi(2);
-            let bubble_s = (1.0 - s * s).powi(2);
-            let shape = bubble_r * bubble_s;
-            let shape_rr = (12.0 * r * r - 4.0) * bubble_s;
-            let shape_ss = bubble_r * (12.0 * s * s - 4.0);
-            let mode = (PI * r / 2.0).cos() * (PI * s / 2.0).cos();
-            let mode_squared = mode * mode;
-            integrals.i1 += weight * (alpha_squared * shape_rr + shape_ss).powi(2);
-            integrals.i2 +=
-                weight * (1.0 - (PI * (1.0 + r)).cos()) * (PI * (1.0 + s)).cos() * shape;
-            integrals.i3 += weight * mode_squared;
-            integrals.i4 += weight * shape_ss * mode_squared;
-        }
+    let cosine_moment = 48.0 / PI.powi(4);
+    let shifted_mean = 16.0 / 15.0 + cosine_moment;
+    GalerkinIntegrals {
+        i1: (1.0 + alpha_squared * alpha_squared) * (128.0 / 5.0) * (256.0 / 315.0)
+            + 2.0 * alpha_squared * (256.0f64 / 105.0).powi(2),
+        i2: -shifted_mean * cosine_moment,
+        i3: 1.0,
+        i4: -12.0 / (PI * PI) * shifted_mean,
     }
-    integrals
 }
 
 /// Amplitude coefficient (62): $`C(\alpha,\nu) = \sqrt{2 I_1 I_3 / (3\pi^2(1-\nu^2) I_2 I_4)}`$,

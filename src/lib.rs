@@ -6,9 +6,10 @@
 //!
 //! This crate is the front end: [`scene`] parses and validates scene files (TOML plus
 //! `--set KEY=VALUE` overrides), [`closed_form`] holds the independent analytic truths of the
-//! clamped rectangle (THEORY.md §8), [`commands`] glues scenes to the physics, and [`cli`] is the
-//! command-line interface of the `wrinkle` binary.
+//! clamped rectangle (THEORY.md §8) and [`analytic`] reports them for a scene, [`commands`] glues
+//! scenes to the physics, and [`cli`] is the command-line interface of the `wrinkle` binary.
 
+pub mod analytic;
 pub mod cli;
 pub mod closed_form;
 pub mod commands;
