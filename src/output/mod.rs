@@ -1,32 +1,57 @@
-//! Output writers of `wrinkle run`: the traced path as CSV (and JSON through [`serde`]), finite
-//! element fields and the reconstructed wrinkled surface as VTK `.vtu` files for ParaView, PNG and
-//! SVG plots, and a progress bar on standard error.
+//! Output writers: the traced path as CSV (and JSON through [`serde`]), finite element fields
+//! and sampled surfaces as VTK `.vtu` files for ParaView, PNG and SVG plots, the self-contained
+//! HTML report, progress on standard error, and the run directory that holds them.
 //!
-//! Outputs never recompute physics: every writer takes numbers that the solvers already produced
-//! (path points, nodal values, an envelope interpolant) and only formats them.
+//! Outputs never recompute physics: every writer takes plain data that the solvers and the
+//! pipeline already produced (path points, nodal values, sampled fields, critical loads) and only
+//! formats it. Labels — quantity names, symbols and units — are data too ([`Quantity`]), so the
+//! same writers serve every model and load (the biaxial load in N/mm, the strip's end
+//! displacement in mm).
+//!
+//! Every file is written atomically ([`files::write_atomically`]); [`RunDirectory`] removes the
+//! previous run's files before writing and lists the files written for `summary.json`.
 //!
 //! All writers return [`std::io::Result`]. Input that cannot be written (mismatched lengths,
 //! non-finite bounds, empty grids, …) is reported as an [`std::io::Error`] of kind
 //! [`std::io::ErrorKind::InvalidInput`] whose inner error is an [`OutputError`], so callers can
 //! either print it as one line or downcast it.
 //!
+//! * [`quantity`] — [`Quantity`]: description, symbol, unit.
+//! * [`files`] — [`write_atomically`], [`RunDirectory`].
 //! * [`path_table`] — [`PathPoint`] and [`write_path_csv`].
-//! * [`vtu`] — [`write_fields_vtu`] (Q8 mesh, VTK cell type 23) and [`write_surface_vtu`]
-//!   (structured Quad4 grid with $`z = w(X, Y)`$).
-//! * [`plots`] — [`plot_response`], [`plot_profiles`], [`plot_map`].
-//! * [`progress`] — [`Progress`].
+//! * [`grid`] — [`GridField`]: a field sampled on a regular grid.
+//! * [`vtu`] — [`write_fields_vtu`] (Q8 mesh, VTK cell type 23) and [`write_surface_vtu`], both
+//!   with [`FieldData`] (the load and its unit) and extra [`PointArray`]s.
+//! * [`plots`] — [`plot_response`], [`plot_comparison`], [`plot_profiles`],
+//!   [`plot_wrinkle_map`].
+//! * [`report`] — [`write_report`]: `report.html` with the summary, warnings, plots and scene.
+//! * [`progress`] — [`Progress`] toward a target, [`SearchProgress`] for searches.
 
+pub mod files;
+pub mod grid;
 pub mod path_table;
 pub mod plots;
 pub mod progress;
+pub mod quantity;
+pub mod report;
 pub mod vtu;
 
+pub use files::{
+    RunDirectory, write_atomically, write_atomically_via_path, write_bytes_atomically, write_json,
+};
+pub use grid::GridField;
 pub use path_table::{PATH_CSV_COLUMNS, PathPoint, write_path_csv, write_path_csv_to};
 pub use plots::{
-    Curve, CurveStyle, VerticalMarker, grid_cell_centres, plot_map, plot_profiles, plot_response,
+    ClosedFormCurve, FigureLayout, LoadMarker, MarkerKind, PanelLayout, PlotOutput, Profile,
+    ProfilePlot, Response, ResponsePoint, WrinkleMap, plot_comparison, plot_profiles,
+    plot_response, plot_wrinkle_map,
 };
-pub use progress::Progress;
-pub use vtu::{write_fields_vtu, write_surface_vtu};
+pub use progress::{Progress, ProgressSink, ProgressTarget, SearchProgress};
+pub use quantity::Quantity;
+pub use report::{
+    Report, ReportFigure, RunSummary, Severity, SummaryRow, Warning, format_rows, write_report,
+};
+pub use vtu::{FieldData, FieldValue, PointArray, write_fields_vtu, write_surface_vtu};
 
 use std::io;
 
