@@ -245,14 +245,14 @@ impl RunData {
                 points,
             });
         }
-        if let Some(loss) = self.summary["loss_of_ellipticity"].as_object() {
-            if let Some(at) = loss["load"].as_f64() {
-                response = response.with_marker(LoadMarker::loss_of_ellipticity(
-                    at,
-                    loss.get("area_fraction").and_then(|f| f.as_f64()),
-                    &self.load,
-                ));
-            }
+        if let Some(loss) = self.summary["loss_of_ellipticity"].as_object()
+            && let Some(at) = loss["load"].as_f64()
+        {
+            response = response.with_marker(LoadMarker::loss_of_ellipticity(
+                at,
+                loss.get("area_fraction").and_then(|f| f.as_f64()),
+                &self.load,
+            ));
         }
         response
     }
@@ -428,7 +428,15 @@ impl RunData {
                         .map(|f| format!("{:.2} %", 100.0 * f))
                         .unwrap_or_else(|| "part".into()),
                     loss.get("location")
-                        .map(|l| l.to_string())
+                        .and_then(|l| l.as_array())
+                        .map(|l| {
+                            let c: Vec<String> = l
+                                .iter()
+                                .filter_map(|c| c.as_f64())
+                                .map(|c| format!("{c:.1}"))
+                                .collect();
+                            format!("(X, Y) = ({}) mm", c.join(", "))
+                        })
                         .unwrap_or_else(|| "an unknown point".into())
                 ),
             ));

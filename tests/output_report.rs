@@ -145,6 +145,7 @@ fn a_run_that_stopped_early_says_so_and_a_missing_figure_is_an_error() {
     assert!(html.contains("class=\"status failed\""));
     assert!(html.contains("Stopped early"));
     assert!(html.contains("max_steps reached"));
+    assert!(html.contains("No warnings."));
 
     let mut report = report;
     report.figures = vec![ReportFigure::png("/nonexistent/plot.png", "missing")];

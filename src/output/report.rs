@@ -350,6 +350,7 @@ pub fn render_html(report: &Report) -> io::Result<String> {
 
 fn push_warnings(html: &mut String, warnings: &[Warning]) {
     if warnings.is_empty() {
+        html.push_str("<p class=\"no-warnings\">No warnings.</p>\n");
         return;
     }
     html.push_str("<section class=\"warnings\">\n<h2>Warnings</h2>\n");
@@ -447,7 +448,7 @@ fn group_thousands(value: usize) -> String {
     let digits = value.to_string();
     let mut grouped = String::new();
     for (index, c) in digits.chars().enumerate() {
-        if index > 0 && (digits.len() - index) % 3 == 0 {
+        if index > 0 && (digits.len() - index).is_multiple_of(3) {
             grouped.push('\u{202f}');
         }
         grouped.push(c);
@@ -466,6 +467,7 @@ h2 { font-size: 1.2rem; margin: 32px 0 10px; padding-bottom: 4px; border-bottom:
 .status { margin: 12px 0 0; padding: 10px 14px; border-radius: 6px; }
 .status.ok { background: #e7f5ea; border-left: 6px solid #2e8b47; }
 .status.failed { background: #fdecec; border-left: 6px solid #c0392b; }
+.no-warnings { margin: 8px 0 0; color: #2e8b47; }
 .warnings div { margin: 8px 0; padding: 10px 14px; border-radius: 6px; }
 .warnings div p { margin: 4px 0 0; }
 .warnings .warning { background: #fff5dc; border-left: 6px solid #d99a00; }

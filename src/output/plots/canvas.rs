@@ -435,7 +435,7 @@ pub(crate) fn draw_vertical_title<DB: DrawingBackend>(
     area.draw(&Text::new(
         text.to_string(),
         (scale.px(left), scale.px(middle + 0.5 * width)),
-        &scale
+        scale
             .font(AXIS_TITLE_SIZE)
             .color(&BLACK)
             .transform(FontTransform::Rotate270),
@@ -456,7 +456,7 @@ pub(crate) fn draw_centred_text<DB: DrawingBackend>(
     area.draw(&Text::new(
         text.to_string(),
         (scale.px(x - 0.5 * width), scale.px(top)),
-        &scale.font(size).color(&color),
+        scale.font(size).color(&color),
     ))?;
     Ok(())
 }

@@ -113,17 +113,17 @@ impl<'a> MapFigure<'a> {
     fn new(title: &'a str, map: &'a WrinkleMap) -> Self {
         let [x0, x1, y0, y1] = map.field.bounds;
         let aspect = (x1 - x0) / (y1 - y0);
-        // Wide domains get wide pictures; the height stays between 160 and 640 pixels where the
-        // width allows it.
-        let mut width: f64 = if aspect >= 3.0 { 1500.0 } else { 1000.0 };
+        // About 1000 pixels wide; long domains get wider pictures (at most 1300 pixels) and a
+        // data area at least 180 pixels high, tall domains at most 600 pixels high.
+        let mut width: f64 = 1000.0;
         let mut height = width / aspect;
-        if height > 640.0 {
-            height = 640.0;
+        if height > 600.0 {
+            height = 600.0;
             width = (height * aspect).max(320.0);
         }
-        if height < 160.0 {
-            height = 160.0;
-            width = (height * aspect).min(2400.0);
+        if height < 180.0 {
+            height = 180.0;
+            width = (height * aspect).min(1300.0);
         }
         let limit = map.color_limit();
         let y_ticks = choose_ticks((y0, y1), height, false);

@@ -405,7 +405,7 @@ fn draw_tags<DB: DrawingBackend>(
         area.draw(&Text::new(
             vertical.tag.clone(),
             (scale.px(left), scale.px(top)),
-            &scale.font(TAG_SIZE).color(&vertical.color),
+            scale.font(TAG_SIZE).color(&vertical.color),
         ))?;
     }
     Ok(())
