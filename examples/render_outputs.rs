@@ -198,7 +198,11 @@ impl RunData {
                 .unwrap_or("scene")
                 .to_string(),
             model: summary["model"].as_str().unwrap_or("model").to_string(),
-            method: summary["method"].as_str().unwrap_or("").to_uppercase(),
+            method: match summary["method"].as_str().unwrap_or("") {
+                "anm" => "ANM".to_string(),
+                "riks" => "Riks".to_string(),
+                other => other.to_string(),
+            },
             load,
             critical_load: number(&summary["linear_buckling_load"], "linear_buckling_load")?,
             thickness: number(&summary["scene"]["material"]["thickness"], "thickness")?,
@@ -261,7 +265,7 @@ impl RunData {
     fn labelled_response(&self) -> Response {
         let mut response = self.response();
         response.model = format!(
-            "{} ({}, {} dofs)",
+            "{}, {}, {} dofs",
             self.model, self.method, self.summary["dofs"]
         );
         response.closed_form = None;

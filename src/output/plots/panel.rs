@@ -288,9 +288,10 @@ pub(crate) fn draw_panel<DB: DrawingBackend>(
         for run in clip_polyline(&line.points, x_range, y_range) {
             draw_polyline(&mut chart, &run, line.color, line.dash, line.width, scale)?;
         }
-        let dots = line.dots.iter().filter(|p| inside(p, x_range, y_range));
+        let dots = spaced_dots(&chart, &line.dots, (x_range, y_range), scale);
         chart.draw_series(
-            dots.map(|&p| Circle::new(p, scale.px(DOT_RADIUS), line.color.filled())),
+            dots.into_iter()
+                .map(|p| Circle::new(p, scale.px(DOT_RADIUS), line.color.filled())),
         )?;
     }
     // Frame on top of everything.
@@ -344,6 +345,31 @@ pub(crate) fn draw_panel<DB: DrawingBackend>(
 }
 
 type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// The dots inside the data area, skipping any that would overlap the previous one drawn (a
+/// path of hundreds of short steps would otherwise become a thick smear).
+fn spaced_dots<DB: DrawingBackend>(
+    chart: &Chart<'_, DB>,
+    dots: &[(f64, f64)],
+    (x_range, y_range): ((f64, f64), (f64, f64)),
+    scale: Scale,
+) -> Vec<(f64, f64)> {
+    let gap = (2.5 * DOT_RADIUS * scale.0).powi(2);
+    let mut last: Option<(i32, i32)> = None;
+    let mut kept = Vec::new();
+    for dot in dots.iter().filter(|p| inside(p, x_range, y_range)) {
+        let pixel = chart.backend_coord(dot);
+        let far = last.is_none_or(|(x, y)| {
+            let (dx, dy) = ((pixel.0 - x) as f64, (pixel.1 - y) as f64);
+            dx * dx + dy * dy >= gap
+        });
+        if far {
+            kept.push(*dot);
+            last = Some(pixel);
+        }
+    }
+    kept
+}
 
 fn draw_polyline<DB: DrawingBackend>(
     chart: &mut Chart<'_, DB>,
