@@ -211,7 +211,13 @@ impl Reporter {
     fn finish(&self, summary: &str) {
         match &self.output {
             Output::Quiet => {}
-            Output::Bar(bar) => bar.finish_with_message(summary.to_string()),
+            Output::Bar(bar) => {
+                bar.disable_steady_tick();
+                bar.finish_with_message(summary.to_string());
+                // indicatif leaves the cursor at the end of the bar's line: what the program
+                // prints next must start on a line of its own.
+                let _ = writeln!(std::io::stderr());
+            }
             Output::Lines { .. } => {
                 let elapsed = self.begin.elapsed().as_secs_f64();
                 self.line(&format!("finished in {elapsed:.1} s: {summary}"));
@@ -237,7 +243,7 @@ impl Progress {
                 ProgressBar::with_draw_target(Some(BAR_RESOLUTION), ProgressDrawTarget::stderr());
             bar.set_style(
                 ProgressStyle::with_template(
-                    "{prefix:.bold} [{bar:30.cyan/blue}] {msg} [{elapsed}]",
+                    "{prefix:.bold} [{bar:30.cyan/blue}] [{elapsed}] {wide_msg}",
                 )
                 .unwrap_or_else(|_| ProgressStyle::default_bar())
                 .progress_chars("=> "),
@@ -306,7 +312,7 @@ impl SearchProgress {
         let reporter = Reporter::new(label, sink, || {
             let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
             bar.set_style(
-                ProgressStyle::with_template("{prefix:.bold} {spinner} {msg} [{elapsed}]")
+                ProgressStyle::with_template("{prefix:.bold} {spinner} [{elapsed}] {wide_msg}")
                     .unwrap_or_else(|_| ProgressStyle::default_spinner()),
             );
             bar
