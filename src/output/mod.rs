@@ -26,6 +26,71 @@
 //!   [`plot_wrinkle_map`].
 //! * [`report`] — [`write_report`]: `report.html` with the summary, warnings, plots and scene.
 //! * [`progress`] — [`Progress`] toward a target, [`SearchProgress`] for searches.
+//!
+//! # Example: what a pipeline does with the results of a run
+//!
+//! ```
+//! use wrinkle::output::{
+//!     FieldData, LoadMarker, Quantity, Report, ReportFigure, Response, ResponsePoint,
+//!     RunDirectory, RunSummary, plot_response, write_report,
+//! };
+//! # fn main() -> std::io::Result<()> {
+//! # let out = std::env::temp_dir().join(format!("wrinkle-doc-{}", std::process::id()));
+//! // Removes the previous run's files (only those it listed), keeps everything else.
+//! let mut directory = RunDirectory::prepare(&out)?;
+//! // Physical amplitudes (twice the envelope for envelope models), loads in N/mm.
+//! let load = Quantity::biaxial_load();
+//! let critical = 0.0895;
+//! let points = (0..=40)
+//!     .map(|k| {
+//!         let lambda = 0.003 * k as f64;
+//!         ResponsePoint {
+//!             load: lambda,
+//!             max_amplitude_over_h: 8.0 * (lambda / critical - 1.0).max(0.0).sqrt(),
+//!             centre_amplitude_over_h: None,
+//!             step_end: k % 5 == 0,
+//!         }
+//!     })
+//!     .collect();
+//! let response = Response::new("reference-envelope", load.clone(), critical, points)
+//!     .with_marker(LoadMarker::linear_buckling(critical, &load));
+//! let plot = plot_response(&directory.path("response"), "Example 1", &response)?;
+//! directory.record(&plot.files)?;
+//! // The load and its unit go into every VTU file as field data:
+//! let _field_data = FieldData::load(0.12, &load.unit);
+//!
+//! let summary = RunSummary {
+//!     model: "reference-envelope".into(),
+//!     method: "ANM".into(),
+//!     dofs: 4704,
+//!     wavenumber: Some(0.2354),
+//!     load: load.clone(),
+//!     critical_load: Some(critical),
+//!     closed_form_critical_load: None,
+//!     closed_form_source: String::new(),
+//!     final_load: Some(0.12),
+//!     final_amplitude_over_h: Some(4.6),
+//!     target_amplitude_over_h: Some(4.0),
+//!     thickness: Some(0.05),
+//!     steps: 8,
+//!     factorizations: 9,
+//!     seconds: 1.5,
+//!     stop: "stop criterion reached".into(),
+//!     reached_target: true,
+//! };
+//! eprint!("{}", summary.to_text()); // the terminal table
+//! let mut report = Report::from_summary(&summary);
+//! report.figures.push(ReportFigure::png(&plot.files[0], "Response"));
+//! let report_path = directory.path("report.html");
+//! directory.record([&report_path])?;
+//! report.files = directory.files().to_vec();
+//! write_report(&report_path, &report)?;
+//! // Last: summary.json with `files`, the list of everything written.
+//! directory.write_summary(serde_json::json!({ "model": "reference-envelope" }))?;
+//! # std::fs::remove_dir_all(&out)?;
+//! # Ok(())
+//! # }
+//! ```
 
 pub mod files;
 pub mod grid;
