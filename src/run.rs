@@ -8,8 +8,10 @@
 use crate::Error;
 use crate::commands::{BuckleReport, buckle};
 use crate::output::{
-    Curve, CurveStyle, PathPoint, Progress, VerticalMarker, plot_map, plot_profiles, plot_response,
-    write_fields_vtu, write_path_csv, write_surface_vtu,
+    ClosedFormCurve, FieldData, GridField, LoadMarker, PathPoint, PointArray, Profile, ProfilePlot,
+    Progress, ProgressSink, ProgressTarget, Quantity, Response, ResponsePoint, RunDirectory,
+    WrinkleMap, plot_profiles, plot_response, plot_wrinkle_map, write_fields_vtu, write_path_csv,
+    write_surface_vtu,
 };
 use crate::scene::{LoadKind, PathMethod, Scene, Wavenumber};
 use crate::setup::{build_problem, configure_model};
@@ -57,18 +59,19 @@ fn envelope_field(spec: &wrinkle_runtime::ModelSpec) -> Option<usize> {
 
 struct RunVisitor<'a> {
     scene: &'a Scene,
-    directory: &'a Path,
+    directory: RunDirectory,
     threshold: BuckleReport,
 }
 
 /// Path following of a scene, writing its outputs into `output_directory`.
 pub fn run(scene: &Scene, output_directory: &Path) -> Result<RunReport, Error> {
-    std::fs::create_dir_all(output_directory).map_err(io_error(output_directory))?;
+    // Removes the previous run's files (only those it listed) before anything is written.
+    let directory = RunDirectory::prepare(output_directory).map_err(io_error(output_directory))?;
     // The threshold (and the wavenumber when `auto`) from linear buckling of the same mesh.
     let threshold = buckle(scene)?;
     let visitor = RunVisitor {
         scene,
-        directory: output_directory,
+        directory,
         threshold,
     };
     with_model(&scene.model.name, visitor)
@@ -78,7 +81,7 @@ pub fn run(scene: &Scene, output_directory: &Path) -> Result<RunReport, Error> {
 impl ModelVisitor for RunVisitor<'_> {
     type Output = Result<RunReport, Error>;
 
-    fn visit<M: EnergyModel>(self, mut model: M) -> Self::Output {
+    fn visit<M: EnergyModel>(mut self, mut model: M) -> Self::Output {
         let scene = self.scene;
         let spec = M::SPEC;
         let begin = Instant::now();
@@ -109,6 +112,11 @@ impl ModelVisitor for RunVisitor<'_> {
         let direction = scene.model.direction_degrees.to_radians();
         let lambda_c = self.threshold.critical_load;
         let biaxial = scene.load.kind == LoadKind::Biaxial;
+        let load_quantity = if biaxial {
+            Quantity::biaxial_load()
+        } else {
+            Quantity::end_displacement()
+        };
         let closed_form_amplitude =
             (biaxial && spec.name == "reference-envelope" && scene.model.direction_degrees == 0.0)
                 .then(|| {
@@ -133,7 +141,15 @@ impl ModelVisitor for RunVisitor<'_> {
             .map(|f| f * target)
             .collect();
         let mut profiles: Vec<Profiles> = Vec::new();
-        let progress = Progress::new(1000, "wrinkle run");
+        let progress = Progress::new(
+            "wrinkle run",
+            ProgressTarget::new(
+                Quantity::new("envelope", "max |w_env| / h", ""),
+                0.0,
+                target,
+            ),
+            ProgressSink::standard_error(false),
+        );
         let mut last_state = PathState {
             displacement: vec![],
             load: 0.0,
@@ -218,8 +234,9 @@ impl ModelVisitor for RunVisitor<'_> {
                     let g = problem.dofs().expand(&interpolated, requested);
                     let path = self
                         .directory
-                        .join(format!("fields_load_{requested:.6}.vtu"));
-                    match write_fields_vtu(&path, &mesh, spec.fields, &g, &[]) {
+                        .path(format!("fields_load_{requested:.6}.vtu"));
+                    let field_data = FieldData::load(requested, load_quantity.unit.clone());
+                    match write_fields_vtu(&path, &mesh, spec.fields, &g, &[], &field_data) {
                         Ok(()) => vtu_written.push((requested, path)),
                         Err(e) => vtu_errors.push(format!("{}: {e}", path.display())),
                     }
@@ -233,12 +250,11 @@ impl ModelVisitor for RunVisitor<'_> {
             previous_state = Some(state.clone());
             last_state = state.clone();
             progress.update(
-                (1000.0 * (max_envelope / h / target).clamp(0.0, 1.0)) as u64,
+                max_envelope / h,
                 &format!(
-                    "step {} λ = {:.5e} envelope/h = {:.3}",
+                    "step {}, λ = {}",
                     event.step,
-                    state.load,
-                    max_envelope / h
+                    load_quantity.format_value(state.load)
                 ),
             );
             if max_envelope / h >= target {
@@ -315,7 +331,7 @@ impl ModelVisitor for RunVisitor<'_> {
 
         // ---- outputs ----
         let mut files = Vec::new();
-        let dir = self.directory;
+        let dir = self.directory.root().to_path_buf();
         let csv = dir.join("path.csv");
         write_path_csv(&csv, &points).map_err(io_error(&csv))?;
         files.push(csv);
@@ -323,8 +339,16 @@ impl ModelVisitor for RunVisitor<'_> {
             .dofs()
             .expand(&last_state.displacement, last_state.load);
         let fields = dir.join("fields_final.vtu");
-        write_fields_vtu(&fields, &mesh, spec.fields, &final_global, &[])
-            .map_err(io_error(&fields))?;
+        let final_field_data = FieldData::load(last_state.load, load_quantity.unit.clone());
+        write_fields_vtu(
+            &fields,
+            &mesh,
+            spec.fields,
+            &final_global,
+            &[],
+            &final_field_data,
+        )
+        .map_err(io_error(&fields))?;
         files.push(fields);
         let envelope_at = |x: f64, y: f64| {
             mesh.interpolate(&final_global, nf, w_field, [x, y])
@@ -334,9 +358,30 @@ impl ModelVisitor for RunVisitor<'_> {
             ((length * q / (2.0 * std::f64::consts::PI)) * 12.0).clamp(50.0, 1500.0) as usize
         };
         let (sx, sy) = (refine(bounds[1] - bounds[0]), refine(bounds[3] - bounds[2]));
+        // Physical deflection w = 2 w_env cos(Q e·X) (THEORY §3).
+        let deflection_at = |x: f64, y: f64| {
+            2.0 * envelope_at(x, y) * (q * (direction.cos() * x + direction.sin() * y)).cos()
+        };
         let surface = dir.join("surface_final.vtu");
-        write_surface_vtu(&surface, bounds, sx, sy, &envelope_at, q, direction, 1.0)
-            .map_err(io_error(&surface))?;
+        let surface_grid = GridField::sample(
+            Quantity::deflection(),
+            bounds,
+            sx + 1,
+            sy + 1,
+            deflection_at,
+        );
+        let envelope_array = PointArray::scalar(
+            "envelope",
+            GridField::sample(Quantity::deflection(), bounds, sx + 1, sy + 1, envelope_at).values,
+        );
+        write_surface_vtu(
+            &surface,
+            &surface_grid,
+            1.0,
+            &[envelope_array],
+            &final_field_data,
+        )
+        .map_err(io_error(&surface))?;
         files.push(surface);
         for (_, p) in &vtu_written {
             files.push(p.clone());
@@ -344,126 +389,101 @@ impl ModelVisitor for RunVisitor<'_> {
 
         // Plots.
         let plots_written = if scene.output.plots {
-            let x_label = if biaxial {
-                "-N_X (N/mm)"
-            } else {
-                "end displacement (mm)"
-            };
-            let mut curves = vec![
-                Curve {
-                    label: "FE max envelope/h".into(),
-                    points: points
-                        .iter()
-                        .map(|p| (p.lambda, p.max_envelope_over_h))
-                        .collect(),
-                    style: CurveStyle::LineWithMarkers(
-                        points
-                            .iter()
-                            .filter(|p| !p.interior)
-                            .map(|p| (p.lambda, p.max_envelope_over_h))
-                            .collect(),
-                    ),
-                },
-                Curve::line(
-                    "FE centre envelope/h",
-                    points
-                        .iter()
-                        .map(|p| (p.lambda, p.center_envelope_over_h))
-                        .collect(),
-                ),
-            ];
+            // Physical amplitudes are twice the envelope (THEORY §3).
+            let response_points = points
+                .iter()
+                .map(|p| ResponsePoint {
+                    load: p.lambda,
+                    max_amplitude_over_h: 2.0 * p.max_envelope_over_h,
+                    centre_amplitude_over_h: Some(2.0 * p.center_envelope_over_h.abs()),
+                    step_end: !p.interior,
+                })
+                .collect();
+            let mut response =
+                Response::new(spec.name, load_quantity.clone(), lambda_c, response_points)
+                    .with_marker(LoadMarker::linear_buckling(lambda_c, &load_quantity));
             if let Some((alpha, nu)) = closed_form_amplitude {
                 let last = points.last().map(|p| p.lambda).unwrap_or(lambda_c);
-                let top = last.max(lambda_c * 1.001);
+                let top = (last / lambda_c).max(1.001);
                 let closed: Vec<(f64, f64)> = (0..=200)
                     .map(|k| {
-                        let l = lambda_c + (top - lambda_c) * k as f64 / 200.0;
+                        let ratio = 1.0 + (top - 1.0) * k as f64 / 200.0;
                         (
-                            l,
-                            crate::closed_form::amplitude_from_load_ratio(alpha, nu, l / lambda_c),
+                            ratio,
+                            2.0 * crate::closed_form::amplitude_from_load_ratio(alpha, nu, ratio),
                         )
                     })
                     .collect();
-                curves.push(Curve::dashed("one-mode closed form (62)", closed));
-            }
-            let mut markers = vec![VerticalMarker {
-                label: format!("linear buckling {lambda_c:.5}"),
-                x: lambda_c,
-            }];
-            if let Some((load, report)) = &first_loss_of_ellipticity {
-                markers.push(VerticalMarker {
-                    label: format!(
-                        "loss of ellipticity {load:.5} ({:.2} % of area)",
-                        100.0 * report.violated_fraction
-                    ),
-                    x: *load,
+                response = response.with_closed_form(ClosedFormCurve {
+                    label: "one-mode closed form (62), physical".into(),
+                    points: closed,
                 });
             }
+            if let Some((load, report)) = &first_loss_of_ellipticity {
+                response = response.with_marker(LoadMarker::loss_of_ellipticity(
+                    *load,
+                    Some(report.violated_fraction),
+                    &load_quantity,
+                ));
+            }
             let stem = dir.join("response");
-            plot_response(
+            let plot = plot_response(
                 &stem,
-                &format!("{} — envelope amplitude", spec.name),
-                &curves,
-                x_label,
-                "envelope / h",
-                &markers,
+                &format!("{}: physical wrinkle amplitude", spec.name),
+                &response,
             )
             .map_err(io_error(&stem))?;
-            files.push(stem.with_extension("png"));
-            files.push(stem.with_extension("svg"));
-            for (name, label, pick) in [
-                ("profiles_x", "X (mm), Y = L_Y/2", 0usize),
-                ("profiles_y", "Y (mm), X = L_X/2", 1usize),
+            files.extend(plot.files);
+            for (name, abscissa, location, pick) in [
+                ("profiles_x", "X", "along X at Y = L_Y/2", 0usize),
+                ("profiles_y", "Y", "along Y at X = L_X/2", 1usize),
             ] {
-                let curves: Vec<Curve> = profiles
+                let profiles: Vec<Profile> = profiles
                     .iter()
-                    .map(|p| {
-                        Curve::line(
-                            format!("λ = {:.5}", p.load),
-                            if pick == 0 {
-                                p.along_x.clone()
-                            } else {
-                                p.along_y.clone()
-                            },
-                        )
+                    .map(|p| Profile {
+                        label: format!("λ = {}", load_quantity.format_value(p.load)),
+                        points: if pick == 0 { &p.along_x } else { &p.along_y }
+                            .iter()
+                            .map(|&(s, a)| (s, 2.0 * a))
+                            .collect(),
                     })
                     .collect();
-                if !curves.is_empty() {
+                if !profiles.is_empty() {
                     let stem = dir.join(name);
-                    plot_profiles(
+                    let plot = plot_profiles(
                         &stem,
-                        &format!("envelope / h along {label}"),
-                        label,
-                        &curves,
+                        &format!("{}: physical amplitude profiles", spec.name),
+                        &ProfilePlot {
+                            abscissa: Quantity::coordinate(abscissa),
+                            ordinate: Quantity::new("physical amplitude", "2 w_env / h", ""),
+                            location: location.to_string(),
+                            profiles,
+                        },
                     )
                     .map_err(io_error(&stem))?;
-                    files.push(stem.with_extension("png"));
-                    files.push(stem.with_extension("svg"));
+                    files.extend(plot.files);
                 }
             }
             let (mx, my) = (sx.min(900), sy.min(450));
-            let values: Vec<f64> = crate::output::grid_cell_centres(bounds, mx, my)
-                .into_iter()
-                .map(|(x, y)| {
-                    2.0 * envelope_at(x, y)
-                        * (q * (direction.cos() * x + direction.sin() * y)).cos()
-                })
-                .collect();
+            let field = GridField::sample(
+                Quantity::deflection(),
+                bounds,
+                mx + 1,
+                my + 1,
+                deflection_at,
+            );
             let stem = dir.join("wrinkles");
-            plot_map(
+            let plot = plot_wrinkle_map(
                 &stem,
                 &format!(
-                    "reconstructed deflection w = 2 w_env cos(Q e·X) (mm), λ = {:.5}",
-                    last_state.load
+                    "{}: physical deflection at λ = {}",
+                    spec.name,
+                    load_quantity.format_value(last_state.load)
                 ),
-                bounds,
-                mx,
-                my,
-                &values,
+                &WrinkleMap::new(field, 1e-3 * h, "10⁻³ h"),
             )
             .map_err(io_error(&stem))?;
-            files.push(stem.with_extension("png"));
-            files.push(stem.with_extension("svg"));
+            files.extend(plot.files);
             true
         } else {
             false
@@ -517,16 +537,21 @@ impl ModelVisitor for RunVisitor<'_> {
             "path": points,
             "scene": scene.echo_json(),
         });
-        let summary_path = dir.join("summary.json");
-        std::fs::write(
-            &summary_path,
-            serde_json::to_string_pretty(&summary).expect("serialisable"),
-        )
-        .map_err(io_error(&summary_path))?;
-        files.push(summary_path);
         let scene_path = dir.join("scene.toml");
-        std::fs::write(&scene_path, scene.to_toml_string()).map_err(io_error(&scene_path))?;
+        crate::output::write_bytes_atomically(&scene_path, scene.to_toml_string().as_bytes())
+            .map_err(io_error(&scene_path))?;
         files.push(scene_path);
+        self.directory.record(&files).map_err(io_error(&dir))?;
+        // `summary.json` last, with the list of every file written (`files`).
+        let summary_path = dir.join("summary.json");
+        let mut summary = summary;
+        self.directory
+            .write_summary(summary.clone())
+            .map_err(io_error(&summary_path))?;
+        if let Some(object) = summary.as_object_mut() {
+            object.insert("files".into(), json!(self.directory.files()));
+        }
+        files.push(summary_path);
         Ok(RunReport {
             summary,
             files,

@@ -1,32 +1,122 @@
-//! Output writers of `wrinkle run`: the traced path as CSV (and JSON through [`serde`]), finite
-//! element fields and the reconstructed wrinkled surface as VTK `.vtu` files for ParaView, PNG and
-//! SVG plots, and a progress bar on standard error.
+//! Output writers: the traced path as CSV (and JSON through [`serde`]), finite element fields
+//! and sampled surfaces as VTK `.vtu` files for ParaView, PNG and SVG plots, the self-contained
+//! HTML report, progress on standard error, and the run directory that holds them.
 //!
-//! Outputs never recompute physics: every writer takes numbers that the solvers already produced
-//! (path points, nodal values, an envelope interpolant) and only formats them.
+//! Outputs never recompute physics: every writer takes plain data that the solvers and the
+//! pipeline already produced (path points, nodal values, sampled fields, critical loads) and only
+//! formats it. Labels — quantity names, symbols and units — are data too ([`Quantity`]), so the
+//! same writers serve every model and load (the biaxial load in N/mm, the strip's end
+//! displacement in mm).
+//!
+//! Every file is written atomically ([`files::write_atomically`]); [`RunDirectory`] removes the
+//! previous run's files before writing and lists the files written for `summary.json`.
 //!
 //! All writers return [`std::io::Result`]. Input that cannot be written (mismatched lengths,
 //! non-finite bounds, empty grids, …) is reported as an [`std::io::Error`] of kind
 //! [`std::io::ErrorKind::InvalidInput`] whose inner error is an [`OutputError`], so callers can
 //! either print it as one line or downcast it.
 //!
+//! * [`quantity`] — [`Quantity`]: description, symbol, unit.
+//! * [`files`] — [`write_atomically`], [`RunDirectory`].
 //! * [`path_table`] — [`PathPoint`] and [`write_path_csv`].
-//! * [`vtu`] — [`write_fields_vtu`] (Q8 mesh, VTK cell type 23) and [`write_surface_vtu`]
-//!   (structured Quad4 grid with $`z = w(X, Y)`$).
-//! * [`plots`] — [`plot_response`], [`plot_profiles`], [`plot_map`].
-//! * [`progress`] — [`Progress`].
+//! * [`grid`] — [`GridField`]: a field sampled on a regular grid.
+//! * [`vtu`] — [`write_fields_vtu`] (Q8 mesh, VTK cell type 23) and [`write_surface_vtu`], both
+//!   with [`FieldData`] (the load and its unit) and extra [`PointArray`]s.
+//! * [`plots`] — [`plot_response`], [`plot_comparison`], [`plot_profiles`],
+//!   [`plot_wrinkle_map`].
+//! * [`report`] — [`write_report`]: `report.html` with the summary, warnings, plots and scene.
+//! * [`progress`] — [`Progress`] toward a target, [`SearchProgress`] for searches.
+//!
+//! # Example: what a pipeline does with the results of a run
+//!
+//! ```
+//! use wrinkle::output::{
+//!     FieldData, LoadMarker, Quantity, Report, ReportFigure, Response, ResponsePoint,
+//!     RunDirectory, RunSummary, plot_response, write_report,
+//! };
+//! # fn main() -> std::io::Result<()> {
+//! # let out = std::env::temp_dir().join(format!("wrinkle-doc-{}", std::process::id()));
+//! // Removes the previous run's files (only those it listed), keeps everything else.
+//! let mut directory = RunDirectory::prepare(&out)?;
+//! // Physical amplitudes (twice the envelope for envelope models), loads in N/mm.
+//! let load = Quantity::biaxial_load();
+//! let critical = 0.0895;
+//! let points = (0..=40)
+//!     .map(|k| {
+//!         let lambda = 0.003 * k as f64;
+//!         ResponsePoint {
+//!             load: lambda,
+//!             max_amplitude_over_h: 8.0 * (lambda / critical - 1.0).max(0.0).sqrt(),
+//!             centre_amplitude_over_h: None,
+//!             step_end: k % 5 == 0,
+//!         }
+//!     })
+//!     .collect();
+//! let response = Response::new("reference-envelope", load.clone(), critical, points)
+//!     .with_marker(LoadMarker::linear_buckling(critical, &load));
+//! let plot = plot_response(&directory.path("response"), "Example 1", &response)?;
+//! directory.record(&plot.files)?;
+//! // The load and its unit go into every VTU file as field data:
+//! let _field_data = FieldData::load(0.12, &load.unit);
+//!
+//! let summary = RunSummary {
+//!     model: "reference-envelope".into(),
+//!     method: "ANM".into(),
+//!     dofs: 4704,
+//!     wavenumber: Some(0.2354),
+//!     load: load.clone(),
+//!     critical_load: Some(critical),
+//!     closed_form_critical_load: None,
+//!     closed_form_source: String::new(),
+//!     final_load: Some(0.12),
+//!     final_amplitude_over_h: Some(4.6),
+//!     target_amplitude_over_h: Some(4.0),
+//!     thickness: Some(0.05),
+//!     steps: 8,
+//!     factorizations: 9,
+//!     seconds: 1.5,
+//!     stop: "stop criterion reached".into(),
+//!     reached_target: true,
+//! };
+//! eprint!("{}", summary.to_text()); // the terminal table
+//! let mut report = Report::from_summary(&summary);
+//! report.figures.push(ReportFigure::png(&plot.files[0], "Response"));
+//! let report_path = directory.path("report.html");
+//! directory.record([&report_path])?;
+//! report.files = directory.files().to_vec();
+//! write_report(&report_path, &report)?;
+//! // Last: summary.json with `files`, the list of everything written.
+//! directory.write_summary(serde_json::json!({ "model": "reference-envelope" }))?;
+//! # std::fs::remove_dir_all(&out)?;
+//! # Ok(())
+//! # }
+//! ```
 
+pub mod files;
+pub mod grid;
 pub mod path_table;
 pub mod plots;
 pub mod progress;
+pub mod quantity;
+pub mod report;
 pub mod vtu;
 
+pub use files::{
+    RunDirectory, write_atomically, write_atomically_via_path, write_bytes_atomically, write_json,
+};
+pub use grid::GridField;
 pub use path_table::{PATH_CSV_COLUMNS, PathPoint, write_path_csv, write_path_csv_to};
 pub use plots::{
-    Curve, CurveStyle, VerticalMarker, grid_cell_centres, plot_map, plot_profiles, plot_response,
+    ClosedFormCurve, FigureLayout, LoadMarker, MarkerKind, PanelLayout, PlotOutput, Profile,
+    ProfilePlot, Response, ResponsePoint, WrinkleMap, plot_comparison, plot_profiles,
+    plot_response, plot_wrinkle_map,
 };
-pub use progress::Progress;
-pub use vtu::{write_fields_vtu, write_surface_vtu};
+pub use progress::{Progress, ProgressSink, ProgressTarget, SearchProgress};
+pub use quantity::Quantity;
+pub use report::{
+    Report, ReportFigure, RunSummary, Severity, SummaryRow, Warning, format_rows, write_report,
+};
+pub use vtu::{FieldData, FieldValue, PointArray, write_fields_vtu, write_surface_vtu};
 
 use std::io;
 

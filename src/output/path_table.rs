@@ -2,8 +2,8 @@
 //! [`write_path_csv`]; the same points serialise to JSON with [`serde`] (the caller assembles
 //! `summary.json`).
 
-use std::fs::File;
-use std::io::{self, BufWriter, Write};
+use super::files::write_atomically;
+use std::io::{self, Write};
 use std::path::Path;
 
 /// One point of a traced equilibrium path.
@@ -46,14 +46,11 @@ pub const PATH_CSV_COLUMNS: [&str; 10] = [
     "closed_form_envelope_over_h",
 ];
 
-/// Writes the path as CSV to the file `path` (created or truncated): a header line with
+/// Writes the path as CSV to the file `path` (replaced atomically): a header line with
 /// [`PATH_CSV_COLUMNS`], then one line per point. Numbers are written so that they parse back to
 /// the same `f64` bit for bit; booleans as `true`/`false`; `None` as an empty cell.
 pub fn write_path_csv(path: &Path, points: &[PathPoint]) -> io::Result<()> {
-    let file = File::create(path).map_err(|error| with_path(path, error))?;
-    let mut writer = BufWriter::new(file);
-    write_path_csv_to(&mut writer, points)?;
-    writer.flush().map_err(|error| with_path(path, error))
+    write_atomically(path, |writer| write_path_csv_to(writer, points))
 }
 
 /// Writes the CSV of [`write_path_csv`] to any writer.

@@ -1,80 +1,348 @@
-//! Progress reporting on standard error: an [`indicatif`] bar when standard error is a terminal,
-//! nothing otherwise (logs and pipes stay clean).
+//! Progress reporting on standard error.
+//!
+//! * [`Progress`] follows one quantity toward a target (the amplitude $`\max|w|/h`$ toward the
+//!   requested amplitude, or the load toward a maximum load): the bar's position is
+//!   $`(v - v_0)/(v_\text{target} - v_0)`$ and the text shows the value and the target with
+//!   their unit.
+//! * [`SearchProgress`] counts the evaluations of a search whose end is not known in advance
+//!   (`wavenumber search: evaluation 7, Q = 0.2354/mm, λ_c = 0.08952 N/mm`).
+//!
+//! Where the reports go ([`ProgressSink`]): an [`indicatif`] bar or spinner when standard error is
+//! a terminal; plain lines when it is not (logs, pipes, CI), at most one every
+//! [`DEFAULT_LINE_INTERVAL`] plus one at the start and one at the end; nothing when `quiet`.
+//! Write errors (a closed pipe) are ignored: progress never stops a computation.
 
+use super::quantity::{Quantity, format_significant};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use std::io::IsTerminal;
+use std::io::{IsTerminal, Write};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
 
-/// A progress bar on standard error, silent when standard error is not a terminal.
-///
-/// Positions are counted in whatever unit the caller chooses (ANM steps, load increments, …);
-/// `total_hint` is the expected number, and the bar grows if the position goes past it.
-#[derive(Debug)]
-pub struct Progress {
-    bar: Option<ProgressBar>,
+/// Shortest time between two plain progress lines (not counting the start and end lines).
+pub const DEFAULT_LINE_INTERVAL: Duration = Duration::from_secs(5);
+
+/// Resolution of the bar (positions per full bar); an implementation detail, never shown.
+const BAR_RESOLUTION: u64 = 10_000;
+
+/// Where progress reports go.
+#[derive(Clone)]
+pub enum ProgressSink {
+    /// Nowhere.
+    Quiet,
+    /// An [`indicatif`] bar (or spinner) redrawn in place on standard error.
+    Terminal,
+    /// Plain lines to a writer, at most one every `interval` besides the start and end lines.
+    Lines {
+        /// The destination (standard error, or a buffer in tests).
+        writer: Arc<Mutex<dyn Write + Send>>,
+        /// Shortest time between two periodic lines.
+        interval: Duration,
+    },
 }
 
-impl Progress {
-    /// A bar labelled `label` expecting `total_hint` units of work (`0`: unknown, a spinner is
-    /// shown). Draws only if standard error is a terminal.
-    pub fn new(total_hint: u64, label: &str) -> Self {
-        if std::io::stderr().is_terminal() {
-            Self::visible(total_hint, label)
+impl std::fmt::Debug for ProgressSink {
+    fn fmt(&self, formatter: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ProgressSink::Quiet => formatter.write_str("Quiet"),
+            ProgressSink::Terminal => formatter.write_str("Terminal"),
+            ProgressSink::Lines { interval, .. } => formatter
+                .debug_struct("Lines")
+                .field("interval", interval)
+                .finish_non_exhaustive(),
+        }
+    }
+}
+
+impl ProgressSink {
+    /// The usual choice: nothing when `quiet`, a bar when standard error is a terminal, plain
+    /// lines on standard error every [`DEFAULT_LINE_INTERVAL`] otherwise.
+    pub fn standard_error(quiet: bool) -> Self {
+        if quiet {
+            ProgressSink::Quiet
+        } else if std::io::stderr().is_terminal() {
+            ProgressSink::Terminal
         } else {
-            Self::hidden()
+            ProgressSink::Lines {
+                writer: Arc::new(Mutex::new(std::io::stderr())),
+                interval: DEFAULT_LINE_INTERVAL,
+            }
         }
     }
 
-    /// A progress reporter that never draws.
-    pub fn hidden() -> Self {
-        Progress { bar: None }
+    /// Plain lines into `writer`, at most one every `interval` (start and end lines always).
+    pub fn lines(writer: Arc<Mutex<dyn Write + Send>>, interval: Duration) -> Self {
+        ProgressSink::Lines { writer, interval }
+    }
+}
+
+/// A quantity followed toward a target, e.g. `max |w| / h` from 0 to 2.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ProgressTarget {
+    /// What is followed (its symbol and unit label the reports).
+    pub quantity: Quantity,
+    /// Value at the start (the empty bar).
+    pub start: f64,
+    /// Value at which the work is done (the full bar).
+    pub target: f64,
+}
+
+impl ProgressTarget {
+    /// `quantity` from `start` to `target`.
+    pub fn new(quantity: Quantity, start: f64, target: f64) -> Self {
+        ProgressTarget {
+            quantity,
+            start,
+            target,
+        }
     }
 
-    /// A bar that draws on standard error whether or not it is a terminal.
-    pub fn visible(total_hint: u64, label: &str) -> Self {
-        let bar = if total_hint == 0 {
-            let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
-            bar.set_style(
-                ProgressStyle::with_template("{prefix:.bold} {spinner} {pos} [{elapsed}] {msg}")
-                    .unwrap_or_else(|_| ProgressStyle::default_spinner()),
-            );
-            bar
+    /// Fraction of the way, clamped to $`[0, 1]`$ (0 when start and target coincide).
+    pub fn fraction(&self, value: f64) -> f64 {
+        let span = self.target - self.start;
+        if span == 0.0 || !span.is_finite() || !value.is_finite() {
+            0.0
         } else {
-            let bar = ProgressBar::with_draw_target(Some(total_hint), ProgressDrawTarget::stderr());
+            ((value - self.start) / span).clamp(0.0, 1.0)
+        }
+    }
+
+    /// `"max |w| / h = 0.532 of 2.00 (27 %)"`, with the unit when there is one.
+    pub fn describe(&self, value: f64) -> String {
+        let unit = if self.quantity.unit.is_empty() {
+            String::new()
+        } else {
+            format!(" {}", self.quantity.unit)
+        };
+        format!(
+            "{} = {}{unit} of {}{unit} ({:.0} %)",
+            self.quantity.short_name(),
+            format_significant(value, 4),
+            format_significant(self.target, 4),
+            100.0 * self.fraction(value)
+        )
+    }
+}
+
+/// Shared machinery of [`Progress`] and [`SearchProgress`]: the bar or the throttled lines.
+struct Reporter {
+    label: String,
+    begin: Instant,
+    output: Output,
+}
+
+enum Output {
+    Quiet,
+    Bar(ProgressBar),
+    Lines {
+        writer: Arc<Mutex<dyn Write + Send>>,
+        interval: Duration,
+        last: Mutex<Instant>,
+    },
+}
+
+impl std::fmt::Debug for Reporter {
+    fn fmt(&self, formatter: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let output = match self.output {
+            Output::Quiet => "quiet",
+            Output::Bar(_) => "terminal",
+            Output::Lines { .. } => "lines",
+        };
+        formatter
+            .debug_struct("Reporter")
+            .field("label", &self.label)
+            .field("output", &output)
+            .finish()
+    }
+}
+
+impl Reporter {
+    fn new(label: &str, sink: ProgressSink, bar: impl FnOnce() -> ProgressBar) -> Self {
+        let begin = Instant::now();
+        let output = match sink {
+            ProgressSink::Quiet => Output::Quiet,
+            ProgressSink::Terminal => {
+                let bar = bar();
+                bar.set_prefix(label.to_string());
+                bar.enable_steady_tick(Duration::from_millis(250));
+                Output::Bar(bar)
+            }
+            ProgressSink::Lines { writer, interval } => Output::Lines {
+                writer,
+                interval,
+                last: Mutex::new(begin),
+            },
+        };
+        Reporter {
+            label: label.to_string(),
+            begin,
+            output,
+        }
+    }
+
+    /// One line now (start and end), whatever the interval.
+    fn line(&self, text: &str) {
+        if let Output::Lines { writer, .. } = &self.output
+            && let Ok(mut writer) = writer.lock()
+        {
+            // A closed standard error must not stop the computation.
+            let _ = writeln!(writer, "{}: {text}", self.label);
+            let _ = writer.flush();
+        }
+    }
+
+    /// A periodic line, if the interval has passed since the last one.
+    fn periodic_line(&self, text: impl FnOnce() -> String) {
+        if let Output::Lines { interval, last, .. } = &self.output {
+            let now = Instant::now();
+            let due = match last.lock() {
+                Ok(mut last) if now.duration_since(*last) >= *interval => {
+                    *last = now;
+                    true
+                }
+                _ => false,
+            };
+            if due {
+                let elapsed = now.duration_since(self.begin).as_secs_f64();
+                self.line(&format!("[{elapsed:.0} s] {}", text()));
+            }
+        }
+    }
+
+    fn finish(&self, summary: &str) {
+        match &self.output {
+            Output::Quiet => {}
+            Output::Bar(bar) => {
+                bar.disable_steady_tick();
+                bar.finish_with_message(summary.to_string());
+                // indicatif leaves the cursor at the end of the bar's line: what the program
+                // prints next must start on a line of its own.
+                let _ = writeln!(std::io::stderr());
+            }
+            Output::Lines { .. } => {
+                let elapsed = self.begin.elapsed().as_secs_f64();
+                self.line(&format!("finished in {elapsed:.1} s: {summary}"));
+            }
+        }
+    }
+}
+
+/// Progress of a computation toward a target value of one quantity (see the module
+/// documentation).
+#[derive(Debug)]
+pub struct Progress {
+    target: ProgressTarget,
+    reporter: Reporter,
+}
+
+impl Progress {
+    /// Reports labelled `label` (e.g. `"wrinkle run"`) of `target` into `sink`; in line mode a
+    /// start line is written at once.
+    pub fn new(label: &str, target: ProgressTarget, sink: ProgressSink) -> Self {
+        let reporter = Reporter::new(label, sink, || {
+            let bar =
+                ProgressBar::with_draw_target(Some(BAR_RESOLUTION), ProgressDrawTarget::stderr());
             bar.set_style(
                 ProgressStyle::with_template(
-                    "{prefix:.bold} [{bar:30.cyan/blue}] {pos}/{len} [{elapsed}] {msg}",
+                    "{prefix:.bold} [{bar:30.cyan/blue}] [{elapsed}] {wide_msg}",
                 )
                 .unwrap_or_else(|_| ProgressStyle::default_bar())
                 .progress_chars("=> "),
             );
             bar
-        };
-        bar.set_prefix(label.to_string());
-        Progress { bar: Some(bar) }
+        });
+        reporter.line(&format!(
+            "started; target {} = {}",
+            target.quantity.short_name(),
+            target.quantity.format_value(target.target)
+        ));
+        Progress { target, reporter }
     }
 
-    /// Whether anything is drawn.
+    /// Reports that draw nothing.
+    pub fn hidden() -> Self {
+        Progress::new(
+            "",
+            ProgressTarget::new(Quantity::new("", "", ""), 0.0, 1.0),
+            ProgressSink::Quiet,
+        )
+    }
+
+    /// Whether anything is shown.
     pub fn is_visible(&self) -> bool {
-        self.bar.is_some()
+        !matches!(self.reporter.output, Output::Quiet)
     }
 
-    /// Moves the bar to `position` and shows `message` next to it.
-    pub fn update(&self, position: u64, message: &str) {
-        if let Some(bar) = &self.bar {
-            if let Some(length) = bar.length()
-                && position > length
-            {
-                bar.set_length(position);
+    /// The followed quantity now has `value`; `detail` is shown after it (e.g.
+    /// `"step 7, λ = 0.09121 N/mm"`).
+    pub fn update(&self, value: f64, detail: &str) {
+        let describe = || {
+            let mut text = self.target.describe(value);
+            if !detail.is_empty() {
+                text.push_str(", ");
+                text.push_str(detail);
             }
-            bar.set_position(position);
-            bar.set_message(message.to_string());
+            text
+        };
+        match &self.reporter.output {
+            Output::Quiet => {}
+            Output::Bar(bar) => {
+                bar.set_position((self.target.fraction(value) * BAR_RESOLUTION as f64) as u64);
+                bar.set_message(describe());
+            }
+            Output::Lines { .. } => self.reporter.periodic_line(describe),
         }
     }
 
-    /// Stops the bar, leaving `message` on screen.
-    pub fn finish(&self, message: &str) {
-        if let Some(bar) = &self.bar {
-            bar.finish_with_message(message.to_string());
+    /// Ends the reports with `summary` (e.g. the stop criterion), left on screen.
+    pub fn finish(&self, summary: &str) {
+        self.reporter.finish(summary);
+    }
+}
+
+/// Progress of a search whose number of evaluations is not known in advance (see the module
+/// documentation).
+#[derive(Debug)]
+pub struct SearchProgress {
+    reporter: Reporter,
+}
+
+impl SearchProgress {
+    /// Reports labelled `label` (e.g. `"wavenumber search"`) into `sink`.
+    pub fn new(label: &str, sink: ProgressSink) -> Self {
+        let reporter = Reporter::new(label, sink, || {
+            let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
+            bar.set_style(
+                ProgressStyle::with_template("{prefix:.bold} {spinner} [{elapsed}] {wide_msg}")
+                    .unwrap_or_else(|_| ProgressStyle::default_spinner()),
+            );
+            bar
+        });
+        reporter.line("started");
+        SearchProgress { reporter }
+    }
+
+    /// Evaluation number `index` (from 1) has been done; `detail` says what it gave, e.g.
+    /// `"Q = 0.2354/mm, λ_c = 0.08952 N/mm"`.
+    pub fn evaluation(&self, index: usize, detail: &str) {
+        let describe = || {
+            if detail.is_empty() {
+                format!("evaluation {index}")
+            } else {
+                format!("evaluation {index}, {detail}")
+            }
+        };
+        match &self.reporter.output {
+            Output::Quiet => {}
+            Output::Bar(bar) => {
+                bar.set_position(index as u64);
+                bar.set_message(describe());
+            }
+            Output::Lines { .. } => self.reporter.periodic_line(describe),
         }
+    }
+
+    /// Ends the reports with `summary` (e.g. the minimum found).
+    pub fn finish(&self, summary: &str) {
+        self.reporter.finish(summary);
     }
 }

@@ -1,12 +1,18 @@
-//! VTK XML unstructured-grid files (`.vtu`, binary inline base64, readable by ParaView):
-//! finite element fields on the Q8 mesh ([`write_fields_vtu`]) and the reconstructed wrinkled
-//! surface on a refined structured grid ([`write_surface_vtu`]).
+//! VTK XML unstructured-grid files (`.vtu`, binary inline base64, readable by ParaView and
+//! meshio): finite element fields on the Q8 mesh ([`write_fields_vtu`]) and a sampled surface
+//! ([`write_surface_vtu`]).
+//!
+//! Every file carries [`FieldData`] — at least the load $`\lambda`$ and its unit
+//! ([`FieldData::load`]) — as the dataset's `<FieldData>` (one-tuple arrays: `Float64` numbers,
+//! `String` texts), and any extra point arrays the caller computed ([`PointArray`]: stress
+//! resultants, the physical deflection, …). vtkio 0.6 does not write field data, so the block is
+//! inserted into its output; vtkio's reader skips it, VTK's reads it.
 
-use super::path_table::with_path;
+use super::files::write_atomically;
+use super::grid::GridField;
 use super::{OutputError, check_length, invalid};
 use std::collections::BTreeSet;
-use std::fs::File;
-use std::io::{self, BufWriter, Write};
+use std::io;
 use std::path::Path;
 use vtkio::model::{
     Attribute, Attributes, ByteOrder, CellType, Cells, DataArray, DataSet, UnstructuredGridPiece,
@@ -14,22 +20,139 @@ use vtkio::model::{
 };
 use wrinkle_runtime::fem::Mesh;
 
+/// One point array: `components` values per point, point after point.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PointArray {
+    /// Array name shown by ParaView, e.g. `"N_X"`; unique within a file.
+    pub name: String,
+    /// Values per point: 1 (scalar) or 3 (vector).
+    pub components: u32,
+    /// `components × points` values.
+    pub values: Vec<f64>,
+}
+
+impl PointArray {
+    /// A scalar array (one value per point).
+    pub fn scalar(name: impl Into<String>, values: Vec<f64>) -> Self {
+        PointArray {
+            name: name.into(),
+            components: 1,
+            values,
+        }
+    }
+
+    /// A vector array (three values per point).
+    pub fn vector(name: impl Into<String>, values: &[[f64; 3]]) -> Self {
+        PointArray {
+            name: name.into(),
+            components: 3,
+            values: values.iter().flatten().copied().collect(),
+        }
+    }
+}
+
+/// One value of the dataset's field data.
+#[derive(Clone, Debug, PartialEq)]
+pub enum FieldValue {
+    /// A number (a `Float64` array of one tuple).
+    Number(f64),
+    /// A text (a `String` array of one tuple).
+    Text(String),
+}
+
+/// Values attached to the whole dataset (VTK field data), in order, e.g. the load and its unit.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FieldData {
+    /// `(name, value)` pairs; names unique.
+    pub entries: Vec<(String, FieldValue)>,
+}
+
+impl FieldData {
+    /// No entries.
+    pub fn new() -> Self {
+        FieldData::default()
+    }
+
+    /// `load` = $`\lambda`$ and `load_unit` = `unit` (e.g. `"N/mm"` for the biaxial load, `"mm"`
+    /// for an end displacement).
+    pub fn load(load: f64, unit: impl Into<String>) -> Self {
+        FieldData::new()
+            .with_number("load", load)
+            .with_text("load_unit", unit)
+    }
+
+    /// Adds a number.
+    pub fn with_number(mut self, name: impl Into<String>, value: f64) -> Self {
+        self.entries.push((name.into(), FieldValue::Number(value)));
+        self
+    }
+
+    /// Adds a text.
+    pub fn with_text(mut self, name: impl Into<String>, value: impl Into<String>) -> Self {
+        self.entries
+            .push((name.into(), FieldValue::Text(value.into())));
+        self
+    }
+
+    /// The `<FieldData>` XML block (empty string when there are no entries).
+    fn to_xml(&self) -> io::Result<String> {
+        if self.entries.is_empty() {
+            return Ok(String::new());
+        }
+        check_unique_names(self.entries.iter().map(|(name, _)| name.as_str()))?;
+        let mut xml = String::from("<FieldData>");
+        for (name, value) in &self.entries {
+            let name = escape_attribute(name);
+            match value {
+                FieldValue::Number(number) => {
+                    if !number.is_finite() {
+                        return Err(invalid(
+                            format!("field data `{name}`"),
+                            format!("must be finite, got {number}"),
+                        ));
+                    }
+                    xml.push_str(&format!(
+                        "<DataArray type=\"Float64\" Name=\"{name}\" NumberOfTuples=\"1\" \
+                         format=\"ascii\">{number:e}</DataArray>"
+                    ));
+                }
+                FieldValue::Text(text) => {
+                    // VTK's ASCII encoding of a string array: the bytes as numbers, each string
+                    // ended by a zero byte.
+                    let bytes: Vec<String> = text
+                        .bytes()
+                        .chain(std::iter::once(0))
+                        .map(|b| b.to_string())
+                        .collect();
+                    xml.push_str(&format!(
+                        "<DataArray type=\"String\" Name=\"{name}\" NumberOfTuples=\"1\" \
+                         format=\"ascii\">{}</DataArray>",
+                        bytes.join(" ")
+                    ));
+                }
+            }
+        }
+        xml.push_str("</FieldData>");
+        Ok(xml)
+    }
+}
+
 /// Writes fields of a Q8 mesh as a `.vtu` file: `POINTS` at $`(X, Y, 0)`$, one cell of VTK type 23
-/// (`QuadraticQuad`, corners then mid-sides, the order of [`Mesh::elements`]) per element, and one
-/// scalar point array per field.
+/// (`QuadraticQuad`, corners then mid-sides, the order of [`Mesh::elements`]) per element, one
+/// scalar point array per unknown field, the `extra` point arrays, and `field_data`.
 ///
 /// `nodal_values` is node-major: the value of field `f` at node `n` is
-/// `nodal_values[n * field_names.len() + f]`. Each `extra` entry is one more scalar point array
-/// (one value per node), e.g. a mode shape or an ellipticity indicator.
+/// `nodal_values[n * field_names.len() + f]`.
 ///
-/// Errors (kind [`io::ErrorKind::InvalidInput`]): wrong array lengths, empty or repeated array
-/// names, an element referring to a missing node, a non-finite coordinate.
+/// Errors (kind [`io::ErrorKind::InvalidInput`]): wrong array lengths, empty or repeated names,
+/// an element referring to a missing node, a non-finite coordinate or field-data number.
 pub fn write_fields_vtu(
     path: &Path,
     mesh: &Mesh,
     field_names: &[&str],
     nodal_values: &[f64],
-    extra: &[(&str, Vec<f64>)],
+    extra: &[PointArray],
+    field_data: &FieldData,
 ) -> io::Result<()> {
     let node_count = mesh.nodes.len();
     let field_count = field_names.len();
@@ -38,11 +161,9 @@ pub fn write_fields_vtu(
         field_names
             .iter()
             .copied()
-            .chain(extra.iter().map(|(name, _)| *name)),
+            .chain(extra.iter().map(|array| array.name.as_str())),
     )?;
-    for (name, values) in extra {
-        check_length(format!("point array `{name}`"), node_count, values.len())?;
-    }
+    check_arrays(extra, node_count)?;
     if mesh.nodes.iter().flatten().any(|c| !c.is_finite()) {
         return Err(invalid("mesh", "node coordinates must be finite"));
     }
@@ -70,9 +191,7 @@ pub fn write_fields_vtu(
             .collect();
         point_arrays.push(scalar_array(name, values));
     }
-    for (name, values) in extra {
-        point_arrays.push(scalar_array(name, values.clone()));
-    }
+    point_arrays.extend(extra.iter().map(data_array));
     let piece = UnstructuredGridPiece {
         points: points.into(),
         cells: Cells {
@@ -87,76 +206,60 @@ pub fn write_fields_vtu(
             cell: Vec::new(),
         },
     };
-    write_piece(path, "wrinkle finite element fields", piece)
+    write_piece(path, "wrinkle finite element fields", piece, field_data)
 }
 
-/// Writes the reconstructed physical surface on a structured grid of `nx × ny` Quad4 cells
-/// (VTK type 9) covering `bounds = [x0, x1, y0, y1]`.
+/// Writes a sampled surface as a `.vtu` file: the grid points of `surface` placed at
+/// $`(X, Y, s\,v)`$ with $`v`$ the sampled value (typically the physical deflection $`w`$ in mm)
+/// and $`s`$ = `vertical_scale`, `(columns − 1) × (rows − 1)` cells of type 9 (`Quad`), the point
+/// array named after the quantity's symbol (unscaled values), the `extra` point arrays (one value
+/// or vector per grid point, in the order of [`GridField::values`]) and `field_data`.
 ///
-/// At every grid point $`\mathbf{X} = (X, Y)`$ the deflection is
-/// $`w = 2\, A(\mathbf{X}) \cos(Q\, \mathbf{e} \cdot \mathbf{X})`$ with the envelope
-/// $`A = `$ `envelope(X, Y)` (the caller interpolates its finite element field), the wavenumber
-/// $`Q`$ and the wave direction $`\mathbf{e} = (\cos\theta, \sin\theta)`$, $`\theta`$ =
-/// `direction` in radians. The points are placed at $`(X, Y, s\, w)`$ with $`s`$ =
-/// `vertical_scale`; the point arrays `w` and `envelope` hold the unscaled values.
-///
-/// Errors (kind [`io::ErrorKind::InvalidInput`]): `nx` or `ny` zero, bounds not finite and
-/// increasing, non-finite wavenumber, direction or scale, an envelope value that is not finite.
-// The signature is the documented interface of `wrinkle run`; the scalars are independent inputs.
-#[allow(clippy::too_many_arguments)]
+/// Errors (kind [`io::ErrorKind::InvalidInput`]): an invalid grid, non-finite values or scale,
+/// wrong array lengths, repeated names.
 pub fn write_surface_vtu(
     path: &Path,
-    bounds: [f64; 4],
-    nx: usize,
-    ny: usize,
-    envelope: &dyn Fn(f64, f64) -> f64,
-    wavenumber: f64,
-    direction: f64,
+    surface: &GridField,
     vertical_scale: f64,
+    extra: &[PointArray],
+    field_data: &FieldData,
 ) -> io::Result<()> {
-    check_bounds(bounds)?;
-    if nx == 0 || ny == 0 {
+    surface.validate()?;
+    if !vertical_scale.is_finite() {
         return Err(invalid(
-            "surface grid",
-            format!("needs at least one cell in each direction, got {nx} × {ny}"),
+            "vertical scale",
+            format!("must be finite, got {vertical_scale}"),
         ));
     }
-    for (what, value) in [
-        ("wavenumber", wavenumber),
-        ("direction", direction),
-        ("vertical scale", vertical_scale),
-    ] {
-        if !value.is_finite() {
-            return Err(invalid(what, format!("must be finite, got {value}")));
+    if let Some(index) = surface.values.iter().position(|v| !v.is_finite()) {
+        let (i, j) = (index % surface.columns, index / surface.columns);
+        return Err(invalid(
+            format!("surface `{}`", surface.quantity.short_name()),
+            format!(
+                "not finite at (X, Y) = {:?}: {}",
+                surface.point(i, j),
+                surface.values[index]
+            ),
+        ));
+    }
+    let name = array_name(&surface.quantity.symbol);
+    check_unique_names(
+        std::iter::once(name.as_str()).chain(extra.iter().map(|a| a.name.as_str())),
+    )?;
+    let (columns, rows) = (surface.columns, surface.rows);
+    check_arrays(extra, columns * rows)?;
+    let mut points = Vec::with_capacity(3 * columns * rows);
+    for j in 0..rows {
+        for i in 0..columns {
+            let [x, y] = surface.point(i, j);
+            points.extend([x, y, vertical_scale * surface.values[j * columns + i]]);
         }
     }
-    let [x0, x1, y0, y1] = bounds;
-    let (cos_theta, sin_theta) = (direction.cos(), direction.sin());
-    let point_count = (nx + 1) * (ny + 1);
-    let mut points = Vec::with_capacity(3 * point_count);
-    let mut deflection = Vec::with_capacity(point_count);
-    let mut envelope_values = Vec::with_capacity(point_count);
-    for j in 0..=ny {
-        let y = y0 + (y1 - y0) * j as f64 / ny as f64;
-        for i in 0..=nx {
-            let x = x0 + (x1 - x0) * i as f64 / nx as f64;
-            let amplitude = envelope(x, y);
-            if !amplitude.is_finite() {
-                return Err(invalid(
-                    "envelope",
-                    format!("not finite at (X, Y) = ({x}, {y}): {amplitude}"),
-                ));
-            }
-            let w = 2.0 * amplitude * (wavenumber * (cos_theta * x + sin_theta * y)).cos();
-            points.extend([x, y, vertical_scale * w]);
-            deflection.push(w);
-            envelope_values.push(amplitude);
-        }
-    }
-    let corner = |i: usize, j: usize| (j * (nx + 1) + i) as u64;
-    let mut connectivity = Vec::with_capacity(4 * nx * ny);
-    for j in 0..ny {
-        for i in 0..nx {
+    let corner = |i: usize, j: usize| (j * columns + i) as u64;
+    let cell_count = (columns - 1) * (rows - 1);
+    let mut connectivity = Vec::with_capacity(4 * cell_count);
+    for j in 0..rows - 1 {
+        for i in 0..columns - 1 {
             connectivity.extend([
                 corner(i, j),
                 corner(i + 1, j),
@@ -165,7 +268,9 @@ pub fn write_surface_vtu(
             ]);
         }
     }
-    let offsets = (1..=(nx * ny) as u64).map(|c| 4 * c).collect();
+    let offsets = (1..=cell_count as u64).map(|c| 4 * c).collect();
+    let mut point_arrays = vec![scalar_array(&name, surface.values.clone())];
+    point_arrays.extend(extra.iter().map(data_array));
     let piece = UnstructuredGridPiece {
         points: points.into(),
         cells: Cells {
@@ -173,30 +278,40 @@ pub fn write_surface_vtu(
                 connectivity,
                 offsets,
             },
-            types: vec![CellType::Quad; nx * ny],
+            types: vec![CellType::Quad; cell_count],
         },
         data: Attributes {
-            point: vec![
-                scalar_array("w", deflection),
-                scalar_array("envelope", envelope_values),
-            ],
+            point: point_arrays,
             cell: Vec::new(),
         },
     };
-    write_piece(path, "wrinkle reconstructed surface", piece)
+    write_piece(path, "wrinkle sampled surface", piece, field_data)
 }
 
-/// `bounds = [x0, x1, y0, y1]` must be finite with `x0 < x1` and `y0 < y1`.
-pub(crate) fn check_bounds(bounds: [f64; 4]) -> io::Result<()> {
-    let [x0, x1, y0, y1] = bounds;
-    if bounds.iter().all(|b| b.is_finite()) && x0 < x1 && y0 < y1 {
-        Ok(())
+/// A VTU array name from a symbol: the symbol itself, or `value` when it is empty.
+fn array_name(symbol: &str) -> String {
+    if symbol.trim().is_empty() {
+        "value".to_string()
     } else {
-        Err(invalid(
-            "bounds",
-            format!("need finite x0 < x1 and y0 < y1, got {bounds:?}"),
-        ))
+        symbol.to_string()
     }
+}
+
+fn check_arrays(arrays: &[PointArray], point_count: usize) -> io::Result<()> {
+    for array in arrays {
+        if !matches!(array.components, 1 | 3) {
+            return Err(invalid(
+                format!("point array `{}`", array.name),
+                format!("needs 1 or 3 components, got {}", array.components),
+            ));
+        }
+        check_length(
+            format!("point array `{}`", array.name),
+            array.components as usize * point_count,
+            array.values.len(),
+        )?;
+    }
+    Ok(())
 }
 
 fn check_unique_names<'a>(names: impl Iterator<Item = &'a str>) -> io::Result<()> {
@@ -213,7 +328,31 @@ fn scalar_array(name: &str, values: Vec<f64>) -> Attribute {
     Attribute::DataArray(DataArray::scalars(name, 1).with_data(values))
 }
 
-fn write_piece(path: &Path, title: &str, piece: UnstructuredGridPiece) -> io::Result<()> {
+fn data_array(array: &PointArray) -> Attribute {
+    let data = if array.components == 3 {
+        DataArray::vectors(array.name.as_str())
+    } else {
+        DataArray::scalars(array.name.as_str(), 1)
+    };
+    Attribute::DataArray(data.with_data(array.values.clone()))
+}
+
+fn escape_attribute(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('"', "&quot;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
+
+/// Encodes the file with vtkio, inserts the field data after the dataset's opening tag and
+/// writes it atomically.
+fn write_piece(
+    path: &Path,
+    title: &str,
+    piece: UnstructuredGridPiece,
+    field_data: &FieldData,
+) -> io::Result<()> {
+    let field_xml = field_data.to_xml()?;
     let vtk = Vtk {
         version: Version::new((1, 0)),
         title: title.to_string(),
@@ -221,12 +360,23 @@ fn write_piece(path: &Path, title: &str, piece: UnstructuredGridPiece) -> io::Re
         data: DataSet::inline(piece),
         file_path: None,
     };
-    let file = File::create(path).map_err(|error| with_path(path, error))?;
-    let mut writer = BufWriter::new(file);
-    vtk.write_xml(&mut writer)
+    let mut bytes = Vec::new();
+    vtk.write_xml(&mut bytes)
         .map_err(|error| OutputError::Library {
             library: "vtkio",
-            message: format!("{}: {error}", path.display()),
+            message: error.to_string(),
         })?;
-    writer.flush().map_err(|error| with_path(path, error))
+    let mut xml = String::from_utf8(bytes).map_err(|error| OutputError::Library {
+        library: "vtkio",
+        message: format!("output is not UTF-8: {error}"),
+    })?;
+    if !field_xml.is_empty() {
+        const OPENING: &str = "<UnstructuredGrid>";
+        let at = xml.find(OPENING).ok_or_else(|| OutputError::Library {
+            library: "vtkio",
+            message: "no <UnstructuredGrid> element in the output".into(),
+        })? + OPENING.len();
+        xml.insert_str(at, &field_xml);
+    }
+    write_atomically(path, |writer| writer.write_all(xml.as_bytes()))
 }
