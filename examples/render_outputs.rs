@@ -506,6 +506,7 @@ fn read_q8_envelope(path: &Path) -> Result<(Mesh, Vec<f64>)> {
         elements,
         edges: Default::default(),
         points: Default::default(),
+        grid: None,
     };
     Ok((mesh, envelope))
 }

@@ -21,7 +21,7 @@
 //! intermediates their recurrences read.
 
 use super::dofs::DofMap;
-use super::element::{ElementValues, GaussRule, JacobianError, QUAD8_NODES};
+use super::element::{ElementValues, GaussRule, JacobianError, QUAD8_NODES, derivative_row};
 use super::mesh::Mesh;
 use crate::linear::pattern::{SparseMatrix, SparsityPattern};
 use crate::model::{Derivative, EnergyModel, JetEntry, QuadratureRule};
@@ -57,6 +57,8 @@ struct TermData {
     value_set: usize,
     /// (field, derivative) of each term-local jet entry.
     jet: Vec<JetEntry>,
+    /// (field, basis row) of each term-local jet entry (see [`derivative_row`]).
+    rows: Vec<(usize, usize)>,
 }
 
 /// Assembles a model on a mesh with a dof map.
@@ -107,9 +109,15 @@ impl<M: EnergyModel> Assembler<M> {
                     value_sets.len() - 1
                 }
             };
+            let jet: Vec<JetEntry> = term.jet.iter().map(|&i| spec.jet[i]).collect();
+            let rows = jet
+                .iter()
+                .map(|e| (e.field, derivative_row(e.derivative)))
+                .collect();
             terms.push(TermData {
                 value_set,
-                jet: term.jet.iter().map(|&i| spec.jet[i]).collect(),
+                jet,
+                rows,
             });
         }
         let element_dofs: Vec<Vec<Option<usize>>> = mesh
@@ -243,11 +251,12 @@ impl<M: EnergyModel> Assembler<M> {
         jet: &mut [S],
     ) {
         let nf = self.dofs.field_count;
-        for (i, entry) in term.jet.iter().enumerate() {
+        let basis = &values.basis[q];
+        for (i, &(field, row)) in term.rows.iter().enumerate() {
+            let b = &basis[row];
             let mut acc = S::zero();
             for k in 0..QUAD8_NODES {
-                acc = acc
-                    + local[k * nf + entry.field] * shape_weight(values, q, k, entry.derivative);
+                acc = acc + local[k * nf + field] * b[k];
             }
             jet[i] = acc;
         }
@@ -293,14 +302,13 @@ impl<M: EnergyModel> Assembler<M> {
                 self.jet_at(term, values, q, &local, &mut jet[..m]);
                 self.model.residual(t, &jet[..m], &mut residual[..m]);
                 let w = values.weights[q];
-                for (i, entry) in term.jet.iter().enumerate() {
+                let basis = &values.basis[q];
+                for (i, &(field, row)) in term.rows.iter().enumerate() {
                     let r = residual[i];
-                    for k in 0..QUAD8_NODES {
-                        let b = shape_weight(values, q, k, entry.derivative);
-                        if b != 0.0 {
-                            let a = k * nf + entry.field;
-                            element[a] = element[a] + r * (b * w);
-                        }
+                    let b = &basis[row];
+                    for (k, &bk) in b.iter().enumerate().take(QUAD8_NODES) {
+                        let a = k * nf + field;
+                        element[a] = element[a] + r * (bk * w);
                     }
                 }
             }
@@ -346,55 +354,62 @@ impl<M: EnergyModel> Assembler<M> {
     /// Tangent values $`\partial^2\Pi/\partial U_a\partial U_b`$ on [`Self::pattern`], generic
     /// over the scalar (dual numbers give directional derivatives of the tangent).
     pub fn tangent_values<S: Scalar>(&self, global: &[S]) -> Vec<S> {
-        let nf = self.dofs.field_count;
-        let m_local = QUAD8_NODES * nf;
+        let m_local = QUAD8_NODES * self.dofs.field_count;
         let mut out = vec![S::zero(); self.pattern.nnz()];
         self.accumulate(&mut out, |e, sink| {
-            let local = self.gather(e, global);
-            let mut element = vec![S::zero(); m_local * m_local];
-            let mut jet = [S::zero(); MAX_JET];
-            let spec = M::SPEC;
-            for (t, term) in self.terms.iter().enumerate() {
-                let values = &self.value_sets[term.value_set].1[e];
-                let m = term.jet.len();
-                let pattern = spec.terms[t].tangent_pattern;
-                let mut hessian = vec![S::zero(); pattern.len()];
-                for q in 0..values.weights.len() {
-                    self.jet_at(term, values, q, &local, &mut jet[..m]);
-                    self.model.tangent(t, &jet[..m], &mut hessian);
-                    let w = values.weights[q];
-                    for (p, &(i, j)) in pattern.iter().enumerate() {
-                        let (ei, ej) = (term.jet[i], term.jet[j]);
-                        let h = hessian[p];
-                        for k in 0..QUAD8_NODES {
-                            let bi = shape_weight(values, q, k, ei.derivative) * w;
-                            if bi == 0.0 {
-                                continue;
-                            }
-                            let row = k * nf + ei.field;
-                            for l in 0..QUAD8_NODES {
-                                let bj = shape_weight(values, q, l, ej.derivative);
-                                if bj == 0.0 {
-                                    continue;
-                                }
-                                let col = l * nf + ej.field;
-                                let v = h * (bi * bj);
-                                element[row * m_local + col] = element[row * m_local + col] + v;
-                                if i != j {
-                                    element[col * m_local + row] = element[col * m_local + row] + v;
-                                }
-                            }
-                        }
-                    }
-                }
-            }
-            for (slot, v) in self.element_slots[e].iter().zip(element) {
+            let element = self.element_tangent(e, global);
+            // A holds each pattern entry once (diagonal entries halved): K = A + Aᵀ.
+            for (index, slot) in self.element_slots[e].iter().enumerate() {
                 if let Some(s) = slot {
-                    sink.add(*s, v);
+                    let (row, col) = (index / m_local, index % m_local);
+                    sink.add(
+                        *s,
+                        element[row * m_local + col] + element[col * m_local + row],
+                    );
                 }
             }
         });
         out
+    }
+
+    /// The element tangent's half $`A`$ with $`K^e = A + A^\top`$: every upper-triangle entry
+    /// $`(i, j)`$ of each term's jet Hessian added once as the outer product
+    /// $`h_{ij} w\, B_i B_j^\top`$ (diagonal entries with $`h_{ii}/2`$), row-major
+    /// $`m \times m`$ with $`m = 8 \times`$ fields.
+    fn element_tangent<S: Scalar>(&self, e: usize, global: &[S]) -> Vec<S> {
+        let nf = self.dofs.field_count;
+        let m_local = QUAD8_NODES * nf;
+        let local = self.gather(e, global);
+        let mut element = vec![S::zero(); m_local * m_local];
+        let mut jet = [S::zero(); MAX_JET];
+        let mut hessian = [S::zero(); MAX_JET * (MAX_JET + 1) / 2];
+        let spec = M::SPEC;
+        for (t, term) in self.terms.iter().enumerate() {
+            let values = &self.value_sets[term.value_set].1[e];
+            let m = term.jet.len();
+            let pattern = spec.terms[t].tangent_pattern;
+            let hessian = &mut hessian[..pattern.len()];
+            for q in 0..values.weights.len() {
+                self.jet_at(term, values, q, &local, &mut jet[..m]);
+                self.model.tangent(t, &jet[..m], hessian);
+                let w = values.weights[q];
+                let basis = &values.basis[q];
+                for (p, &(i, j)) in pattern.iter().enumerate() {
+                    let (fi, ri) = term.rows[i];
+                    let (fj, rj) = term.rows[j];
+                    let c = hessian[p] * if i == j { 0.5 * w } else { w };
+                    let (bi, bj) = (&basis[ri], &basis[rj]);
+                    for k in 0..QUAD8_NODES {
+                        let a = c * bi[k];
+                        let row = &mut element[(k * nf + fi) * m_local..][..m_local];
+                        for l in 0..QUAD8_NODES {
+                            row[l * nf + fj] = row[l * nf + fj] + a * bj[l];
+                        }
+                    }
+                }
+            }
+        }
+        element
     }
 
     /// Assembles the `f64` tangent into `matrix` (which must be on [`Self::pattern`]).
@@ -531,14 +546,12 @@ impl<M: EnergyModel> Assembler<M> {
                             &mut residual[..m],
                         );
                         let w = values.weights[q];
-                        for (i, jet_entry) in term.jet.iter().enumerate() {
-                            let r = residual[i];
-                            if r == 0.0 {
-                                continue;
-                            }
+                        let basis = &values.basis[q];
+                        for (i, &(field, row)) in term.rows.iter().enumerate() {
+                            let r = residual[i] * w;
+                            let b = &basis[row];
                             for k in 0..QUAD8_NODES {
-                                let b = shape_weight(values, q, k, jet_entry.derivative);
-                                forces[k * nf + jet_entry.field] += r * (b * w);
+                                forces[k * nf + field] += r * b[k];
                             }
                         }
                     }
@@ -695,12 +708,3 @@ pub fn colour_elements(mesh: &Mesh) -> Vec<Vec<usize>> {
 pub const MAX_FIELDS: usize = 8;
 /// Longest term jet (3 entries per field).
 pub const MAX_JET: usize = 3 * MAX_FIELDS;
-
-#[inline(always)]
-fn shape_weight(values: &ElementValues, q: usize, k: usize, derivative: Derivative) -> f64 {
-    match derivative {
-        Derivative::Value => values.values[q][k],
-        Derivative::X => values.gradients[q][k][0],
-        Derivative::Y => values.gradients[q][k][1],
-    }
-}

@@ -127,6 +127,20 @@ pub struct ElementValues {
     pub weights: Vec<f64>,
     /// Physical coordinates of each point.
     pub points: Vec<[f64; 2]>,
+    /// Per point, the three rows $`(N_i,\ \partial_X N_i,\ \partial_Y N_i)`$ indexed by
+    /// [`derivative_row`] (the gradient rows are zero when gradients were not requested): the
+    /// weights with which a jet entry takes its value from the element's nodal values.
+    pub basis: Vec<[[f64; QUAD8_NODES]; 3]>,
+}
+
+/// Row of [`ElementValues::basis`] holding a derivative: value 0, X 1, Y 2.
+#[inline(always)]
+pub fn derivative_row(derivative: crate::model::Derivative) -> usize {
+    match derivative {
+        crate::model::Derivative::Value => 0,
+        crate::model::Derivative::X => 1,
+        crate::model::Derivative::Y => 2,
+    }
 }
 
 /// Error of the isoparametric map.
@@ -192,11 +206,25 @@ impl ElementValues {
             weights.push(rule.weights[q] * det);
             points.push(point);
         }
+        let basis = (0..nq)
+            .map(|q| {
+                let mut rows = [[0.0; QUAD8_NODES]; 3];
+                rows[0] = values[q];
+                if with_gradients {
+                    for k in 0..QUAD8_NODES {
+                        rows[1][k] = gradients[q][k][0];
+                        rows[2][k] = gradients[q][k][1];
+                    }
+                }
+                rows
+            })
+            .collect();
         Ok(ElementValues {
             values,
             gradients,
             weights,
             points,
+            basis,
         })
     }
 }

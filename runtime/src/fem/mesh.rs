@@ -14,6 +14,34 @@ pub struct Mesh {
     pub edges: BTreeMap<String, Vec<[usize; 3]>>,
     /// Named node sets that are not edges (single points used to remove rigid-body motions).
     pub points: BTreeMap<String, Vec<usize>>,
+    /// Element boundaries of a structured rectangle (`None` for a general mesh): point location
+    /// is then a binary search per axis instead of a scan of the elements.
+    pub grid: Option<StructuredGrid>,
+}
+
+/// The tensor-product layout of a mesh made by [`Mesh::rectangle`]: element `ey * nx + ex`
+/// covers $`[x_{e_x}, x_{e_x+1}] \times [y_{e_y}, y_{e_y+1}]`$ and is an affine rectangle.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StructuredGrid {
+    /// Element boundaries along X (`nx + 1`, increasing).
+    pub xs: Vec<f64>,
+    /// Element boundaries along Y (`ny + 1`, increasing).
+    pub ys: Vec<f64>,
+}
+
+impl StructuredGrid {
+    /// The interval of `breaks` containing `x` and the local coordinate in $`[-1, 1]`$.
+    fn interval(breaks: &[f64], x: f64) -> Option<(usize, f64)> {
+        let (first, last) = (breaks[0], breaks[breaks.len() - 1]);
+        let slack = 1e-10 * (last - first);
+        if !(x >= first - slack && x <= last + slack) {
+            return None;
+        }
+        let count = breaks.len() - 1;
+        let i = breaks.partition_point(|&b| b <= x).clamp(1, count) - 1;
+        let local = 2.0 * (x - breaks[i]) / (breaks[i + 1] - breaks[i]) - 1.0;
+        Some((i, local.clamp(-1.0, 1.0)))
+    }
 }
 
 /// Errors building a mesh.
@@ -158,6 +186,7 @@ impl Mesh {
             elements,
             edges,
             points: BTreeMap::new(),
+            grid: Some(StructuredGrid { xs, ys }),
         };
         // Points for minimal in-plane supports: the centre, and the middle of each edge.
         for (name, point) in [
@@ -257,10 +286,21 @@ mod tests {
 }
 
 impl Mesh {
-    /// The element containing `point` and its reference coordinates $`(\xi,\eta)`$, by a
-    /// bounding-box search and Newton inversion of the isoparametric map (one iteration for the
-    /// affine elements of [`Mesh::rectangle`]). `None` outside the mesh.
+    /// The element containing `point` and its reference coordinates $`(\xi,\eta)`$. On a
+    /// structured rectangle, a binary search per axis ($`O(\log n)`$); otherwise a bounding-box
+    /// scan of the elements with Newton inversion of the isoparametric map. `None` outside the
+    /// mesh.
     pub fn locate(&self, point: [f64; 2]) -> Option<(usize, [f64; 2])> {
+        if let Some(grid) = &self.grid {
+            let (ex, xi) = StructuredGrid::interval(&grid.xs, point[0])?;
+            let (ey, eta) = StructuredGrid::interval(&grid.ys, point[1])?;
+            return Some((ey * (grid.xs.len() - 1) + ex, [xi, eta]));
+        }
+        self.locate_by_scan(point)
+    }
+
+    /// [`Self::locate`] for a general mesh: scan of the elements' bounding boxes.
+    pub fn locate_by_scan(&self, point: [f64; 2]) -> Option<(usize, [f64; 2])> {
         use super::element::Quad8;
         let tolerance = 1e-10;
         for (e, nodes) in self.elements.iter().enumerate() {
@@ -380,5 +420,42 @@ mod locate_tests {
             assert!((v - f(p[0], p[1])).abs() < 1e-12, "{p:?}");
         }
         assert!(mesh.interpolate(&values, 1, 0, [4.5, 1.0]).is_none());
+    }
+
+    #[test]
+    fn structured_location_agrees_with_the_element_scan() {
+        let mesh = Mesh::rectangle(4.0, 3.0, 5, 4, 3.0).unwrap();
+        for p in [
+            [0.0, 0.0],
+            [4.0, 3.0],
+            [1.234, 2.5],
+            [2.0, 1.5],
+            [3.99, 0.01],
+            [0.7, 3.0],
+        ] {
+            let (e, [xi, eta]) = mesh.locate(p).unwrap();
+            let (e2, [xi2, eta2]) = mesh.locate_by_scan(p).unwrap();
+            // On a shared element boundary both elements are right; compare the mapped point.
+            let map = |e: usize, xi: f64, eta: f64| {
+                let n = crate::fem::element::Quad8::shape_values(xi, eta);
+                let c = mesh.element_coordinates(e);
+                let mut x = [0.0; 2];
+                for k in 0..QUAD8_NODES {
+                    x[0] += n[k] * c[k][0];
+                    x[1] += n[k] * c[k][1];
+                }
+                x
+            };
+            let (a, b) = (map(e, xi, eta), map(e2, xi2, eta2));
+            assert!(
+                (a[0] - p[0]).abs() < 1e-12 && (a[1] - p[1]).abs() < 1e-12,
+                "{p:?}"
+            );
+            assert!(
+                (b[0] - p[0]).abs() < 1e-12 && (b[1] - p[1]).abs() < 1e-12,
+                "{p:?}"
+            );
+        }
+        assert!(mesh.locate([-0.1, 1.0]).is_none());
     }
 }

@@ -10,4 +10,4 @@ pub use assembly::{Assembler, Parallelism, TaylorTape};
 pub use dofs::{DirichletCondition, DofMap};
 pub use element::{ElementValues, GaussRule, Quad8};
 pub use loads::{BodyLoad, EdgeTraction, LoadVectors};
-pub use mesh::Mesh;
+pub use mesh::{Mesh, StructuredGrid};

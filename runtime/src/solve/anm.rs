@@ -7,8 +7,10 @@
 //! $`F = -\partial R/\partial\lambda`$:
 //! * order 1: $`K_t\hat U = F`$, $`\lambda_1 = \pm(1 + \|\hat U\|^2)^{-1/2}`$, $`U_1 = \lambda_1\hat U`$;
 //! * order $`n\ge2`$: $`K_t\hat U_n = F^{nl}_n`$ with $`F^{nl}_n`$ minus the $`a^n`$ coefficient of
-//!   $`R(\sum_{k<n} a^kU_k, \sum_{k<n}a^k\lambda_k)`$ — obtained by running the model's generated
-//!   residual kernels on truncated series ([`Series`]); no model-specific code — then
+//!   $`R(\sum_{k<n} a^kU_k, \sum_{k<n}a^k\lambda_k)`$ — obtained from the model's generated
+//!   Taylor-mode kernels ([`compute_series`]: $`O(k)`$ per product at order $`k`$ from a
+//!   per-point tape; the generic kernels on truncated [`Series`] are the reference,
+//!   [`compute_series_generic`]); no model-specific code — then
 //!   $`\lambda_n = -\lambda_1\langle\hat U_n, U_1\rangle`$ and $`U_n = \lambda_n\hat U + \hat U_n`$.
 //!
 //! Step length $`a_{\max} = (\epsilon\|U_1\|/\|U_N\|)^{1/(N-1)}`$ or, optionally, the Padé
@@ -16,11 +18,17 @@
 //! (arc-length) correction brings it back under the tolerance when needed (or the step is
 //! halved).
 //!
-//! Bifurcations: at every step start the solver predicts the nearest bifurcation load by linear
-//! buckling about the current point along the path tangent (one shift-invert eigen-solve with
-//! the step's factorised tangent). Predictions are trusted while two successive ones agree to
-//! [`PREDICTION_AGREEMENT`] (the path is still on its fundamental branch); a bifurcation is
-//! reported, with the last trusted prediction as its load, at the step whose end passes it.
+//! Each step is oriented with the path tangent at the end of the previous one.
+//!
+//! Bifurcations, without an eigen-solve at every step: the factorisation of each step's tangent
+//! gives its inertia (negative pivots of $`LDL^\top`$; none after $`LL^\top`$). When it changes, a
+//! critical point was crossed in the previous step and is located by linear buckling about that
+//! step's start along its path tangent. On a path that stays stable — the imperfect path that
+//! turns smoothly onto the wrinkled branch — the first step whose series shows a geometric tail
+//! (the ANM signature of a nearby singularity) predicts the bifurcation load by one such analysis
+//! with its own factorised tangent; the bifurcation is reported at the step whose end passes
+//! it. An eigen-solver failure never stops the path and is never swallowed: it is kept in
+//! [`PathResult::warnings`].
 
 use super::error::SolveError;
 use super::newton::NewtonOptions;
@@ -36,9 +44,6 @@ use crate::series::{
     MAX_SERIES_LEN, PadeApproximant, PathSeries, Series, geometric_ratio, series_step_length,
 };
 use std::time::Instant;
-
-/// Relative agreement of two successive bifurcation predictions for the later one to be trusted.
-pub const PREDICTION_AGREEMENT: f64 = 1e-5;
 
 /// Settings of [`follow_path_anm`].
 #[derive(Clone, Debug)]
@@ -60,9 +65,13 @@ pub struct AnmOptions {
     /// Iteration cap of the corrector (a Riks correction on the arc through the step's end
     /// point, to `residual_tolerance / 100`); its tolerance field is not used.
     pub corrector: NewtonOptions,
-    /// Predict the bifurcation load from each step's tangent (one shift-invert eigen-solve per
-    /// step with the already factorised tangent).
+    /// Watch for bifurcations: a change of the tangent's inertia between steps is located by
+    /// linear buckling about the previous step's start; on a stable (e.g. imperfect) path, the
+    /// first step whose series shows a geometric tail predicts the bifurcation load by one
+    /// linear buckling analysis about its start. No eigen-solve at other steps.
     pub predict_bifurcation: bool,
+    /// Warm start of those eigen-solves (e.g. the critical mode of a linear buckling analysis).
+    pub bifurcation_mode_guess: Option<Vec<f64>>,
     /// Cap on the path parameter of one step; when the series is exactly polynomial (no
     /// finite range) the step uses this value, or 1 if it is infinite.
     pub max_step_length: f64,
@@ -83,6 +92,7 @@ impl Default for AnmOptions {
                 max_iterations: 12,
             },
             predict_bifurcation: true,
+            bifurcation_mode_guess: None,
             max_step_length: f64::INFINITY,
         }
     }
@@ -107,8 +117,12 @@ pub struct AnmStep {
     pub correction_iterations: usize,
     /// Radius of convergence estimated from a geometric tail of the series, if any.
     pub geometric_radius: Option<f64>,
-    /// Bifurcation load predicted by linear buckling about the step's start.
+    /// Bifurcation load predicted by linear buckling about the step's start (only at the step
+    /// where it was computed).
     pub predicted_bifurcation: Option<f64>,
+    /// Negative eigenvalues of the tangent at the step's start (`None` when the factorisation
+    /// gives no inertia, i.e. after LU).
+    pub negative_pivots: Option<usize>,
 }
 
 /// Order 1 of a step: $`\hat U = K_t^{-1}F`$, $`\lambda_1 = \pm(1+\|\hat U\|^2)^{-1/2}`$, the sign
@@ -286,93 +300,300 @@ pub fn follow_path_anm<M: EnergyModel>(
     observer: &mut dyn FnMut(&PathEvent) -> PathControl,
     steps_log: &mut Vec<AnmStep>,
 ) -> PathResult {
-    let begin = Instant::now();
-    let mut statistics = PathStatistics::default();
-    let mut matrix = problem.new_matrix();
-    let mut tape = problem
-        .assembler
-        .taylor_tape(options.order.clamp(2, MAX_SERIES_LEN - 2));
-    let mut state = start;
-    let mut bifurcation = None;
-    let mut previous: Option<(Vec<f64>, f64)> = None;
-    // Bifurcation predictions are trusted while successive ones agree (the path is still on its
-    // fundamental branch, where linear buckling about the current point is accurate).
-    let mut last_prediction: Option<f64> = None;
-    let mut trusted_prediction: Option<f64> = None;
-    let finish = |state: PathState, mut statistics: PathStatistics, stop: PathStop, bifurcation| {
-        statistics.total_seconds = begin.elapsed().as_secs_f64();
-        PathResult {
-            last: state,
-            statistics,
-            stop,
-            bifurcation,
-        }
+    let mut run = AnmRun {
+        problem,
+        factor,
+        options,
+        begin: Instant::now(),
+        statistics: PathStatistics::default(),
+        matrix: problem.new_matrix(),
+        tape: problem
+            .assembler
+            .taylor_tape(options.order.clamp(2, MAX_SERIES_LEN - 2)),
+        state: start,
+        previous_direction: None,
+        previous_start: None,
+        negative_pivots: None,
+        prediction: None,
+        bifurcation: None,
+        warnings: Vec::new(),
     };
-    let start_residual = problem.relative_residual(&state.displacement, state.load);
-    statistics.residual_assemblies += 1;
-    if observer(&PathEvent {
+    let start_residual = problem.relative_residual(&run.state.displacement, run.state.load);
+    run.statistics.residual_assemblies += 1;
+    let event = PathEvent {
         step: 0,
         interior: false,
-        state: &state,
+        state: &run.state,
         relative_residual: start_residual,
         predicted_bifurcation: None,
-    }) == PathControl::Stop
-    {
-        return finish(state, statistics, PathStop::Observer, bifurcation);
+    };
+    if observer(&event) == PathControl::Stop {
+        return run.finish(PathStop::Observer);
     }
     for step in 1..=options.max_steps {
-        // One tangent factorisation per step.
-        let t = Instant::now();
-        problem.tangent_into(&state.displacement, state.load, &mut matrix);
-        statistics.tangent_assemblies += 1;
-        statistics.assembly_seconds += t.elapsed().as_secs_f64();
-        let t = Instant::now();
-        if let Err(e) = factor.factorize(&matrix) {
-            let error = SolveError::linear(format!(
-                "ANM step {step} at load {:.6e}: tangent factorisation",
-                state.load
-            ))(e);
-            return finish(state, statistics, PathStop::Failed(error), bifurcation);
+        match run.step(step, observer, steps_log) {
+            Ok(None) => {}
+            Ok(Some(stop)) => return run.finish(stop),
+            Err(error) => return run.finish(PathStop::Failed(error)),
         }
-        statistics.factorizations += 1;
-        statistics.factorization_seconds += t.elapsed().as_secs_f64();
+    }
+    run.finish(PathStop::MaxSteps)
+}
 
+/// The state of one ANM path.
+struct AnmRun<'a, M: EnergyModel> {
+    problem: &'a Problem<M>,
+    factor: &'a mut SparseFactorization,
+    options: &'a AnmOptions,
+    begin: Instant,
+    statistics: PathStatistics,
+    matrix: SparseMatrix,
+    tape: TaylorTape,
+    state: PathState,
+    /// Path tangent $`(dU/da, d\lambda/da)`$ at the end of the previous step.
+    previous_direction: Option<(Vec<f64>, f64)>,
+    /// Start point and $`\hat U`$ of the previous step (to locate a critical point crossed in it).
+    previous_start: Option<(PathState, Vec<f64>)>,
+    /// Negative eigenvalues of the tangent at the previous step's start.
+    negative_pivots: Option<usize>,
+    /// Bifurcation load predicted by linear buckling about the path, when computed.
+    prediction: Option<f64>,
+    bifurcation: Option<(f64, usize)>,
+    warnings: Vec<String>,
+}
+
+/// How a step's end point was accepted.
+struct AcceptedEnd {
+    state: PathState,
+    residual: f64,
+    corrections: usize,
+    step_length: f64,
+    hit_max_load: bool,
+}
+
+impl<M: EnergyModel> AnmRun<'_, M> {
+    fn finish(mut self, stop: PathStop) -> PathResult {
+        self.statistics.total_seconds = self.begin.elapsed().as_secs_f64();
+        PathResult {
+            last: self.state,
+            statistics: self.statistics,
+            stop,
+            bifurcation: self.bifurcation,
+            warnings: self.warnings,
+        }
+    }
+
+    /// One step: factorise, series, bifurcation bookkeeping, step length, end point, dense
+    /// output. `Ok(Some(stop))` ends the path.
+    fn step(
+        &mut self,
+        step: usize,
+        observer: &mut dyn FnMut(&PathEvent) -> PathControl,
+        steps_log: &mut Vec<AnmStep>,
+    ) -> Result<Option<PathStop>, SolveError> {
+        self.factorize_tangent(step)?;
         let t = Instant::now();
-        let direction = previous.as_ref().map(|(u, l)| (u.as_slice(), *l));
-        let (series, u_hat) =
-            match compute_series(problem, &state, factor, options.order, direction, &mut tape) {
-                Ok(s) => s,
-                Err(e) => return finish(state, statistics, PathStop::Failed(e), bifurcation),
-            };
-        statistics.series_assemblies += series.order() - 1;
-        statistics.series_seconds += t.elapsed().as_secs_f64();
-
-        // Bifurcation predicted by linear buckling about this point along the path tangent.
-        let predicted = if options.predict_bifurcation && series.load[1] > 0.0 {
-            let t = Instant::now();
-            let p = predict_bifurcation(problem, &state, &u_hat, factor, &matrix);
-            statistics.bifurcation_seconds += t.elapsed().as_secs_f64();
-            p
-        } else {
-            None
+        let direction = self
+            .previous_direction
+            .as_ref()
+            .map(|(u, l)| (u.as_slice(), *l));
+        let (series, u_hat) = compute_series(
+            self.problem,
+            &self.state,
+            self.factor,
+            self.options.order,
+            direction,
+            &mut self.tape,
+        )?;
+        self.statistics.series_assemblies += series.order() - 1;
+        self.statistics.series_seconds += t.elapsed().as_secs_f64();
+        let predicted = self.watch_bifurcation(step, &series, &u_hat);
+        let (plain, pade, pade_length) = self.ranges(&series);
+        let end = self.accept_end(step, &series, pade.as_ref(), plain, pade_length)?;
+        let evaluator = |a: f64| {
+            let use_pade = pade_length.is_some_and(|l| l > plain && a > plain);
+            evaluate(&series, if use_pade { pade.as_ref() } else { None }, a)
         };
+        if let Some(stop) =
+            self.dense_output(step, end.step_length, &evaluator, predicted, observer)
+        {
+            return Ok(Some(stop));
+        }
+        if let Some(p) = self.prediction
+            && self.bifurcation.is_none()
+            && end.state.load >= p
+            && self.state.load < p
+        {
+            self.bifurcation = Some((p, step));
+        }
+        steps_log.push(AnmStep {
+            step,
+            load_range: (self.state.load, end.state.load),
+            step_length: end.step_length,
+            series_step_length: plain,
+            pade_step_length: pade_length,
+            end_residual: end.residual,
+            correction_iterations: end.corrections,
+            geometric_radius: geometric_ratio(&series),
+            predicted_bifurcation: predicted,
+            negative_pivots: self.negative_pivots,
+        });
+        self.statistics.steps = step;
+        // The next step continues the path tangent at this step's end (not at its start: past a
+        // sharp turn the two can point apart).
+        self.previous_direction = Some(series.evaluate_derivative(end.step_length));
+        self.previous_start = Some((std::mem::replace(&mut self.state, end.state), u_hat));
+        let event = PathEvent {
+            step,
+            interior: false,
+            state: &self.state,
+            relative_residual: end.residual,
+            predicted_bifurcation: predicted,
+        };
+        if observer(&event) == PathControl::Stop {
+            return Ok(Some(PathStop::Observer));
+        }
+        Ok(end.hit_max_load.then_some(PathStop::MaxLoad))
+    }
 
-        let plain = series_step_length(&series, options.series_tolerance);
-        let pade = if options.pade {
-            PadeApproximant::new(&series).ok()
+    /// Assembles and factorises the tangent at the step's start; a change of its inertia
+    /// (negative pivots of $`LDL^\top`$, none after $`LL^\top`$) reveals a critical point crossed
+    /// during the previous step, which is then located.
+    fn factorize_tangent(&mut self, step: usize) -> Result<(), SolveError> {
+        let t = Instant::now();
+        self.problem
+            .tangent_into(&self.state.displacement, self.state.load, &mut self.matrix);
+        self.statistics.tangent_assemblies += 1;
+        self.statistics.assembly_seconds += t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        self.factor
+            .factorize(&self.matrix)
+            .map_err(SolveError::linear(format!(
+                "ANM step {step} at load {:.6e}: tangent factorisation",
+                self.state.load
+            )))?;
+        self.statistics.factorizations += 1;
+        self.statistics.factorization_seconds += t.elapsed().as_secs_f64();
+        let negative = self.factor.negative_pivots();
+        if let (Some(before), Some(now)) = (self.negative_pivots, negative)
+            && now > before
+            && self.bifurcation.is_none()
+            && self.options.predict_bifurcation
+        {
+            self.locate_crossed_critical_point(step - 1);
+        }
+        self.negative_pivots = negative;
+        Ok(())
+    }
+
+    /// Linear buckling about the previous step's start (where the tangent was still positive
+    /// definite) along its path tangent: the critical point crossed in that step.
+    fn locate_crossed_critical_point(&mut self, crossed_in: usize) {
+        let Some((start, u_hat)) = self.previous_start.clone() else {
+            return;
+        };
+        let t = Instant::now();
+        let located = SparseFactorization::analyze(self.problem.assembler.pattern())
+            .map_err(SolveError::linear(
+                "locating a critical point: symbolic analysis",
+            ))
+            .and_then(|mut factor| {
+                let mut tangent = self.problem.new_matrix();
+                self.problem
+                    .tangent_into(&start.displacement, start.load, &mut tangent);
+                factor.factorize(&tangent).map_err(SolveError::linear(
+                    "locating a critical point: factorisation at the previous step's start",
+                ))?;
+                self.statistics.factorizations += 1;
+                predict_bifurcation(self.problem, &start, &u_hat, &factor, &tangent, None)
+            });
+        self.statistics.bifurcation_seconds += t.elapsed().as_secs_f64();
+        match located {
+            Ok(load) => self.bifurcation = Some((load, crossed_in)),
+            Err(error) => self.warnings.push(format!(
+                "the tangent lost positive definiteness during step {crossed_in} (a critical point was crossed) but locating it failed: {error}"
+            )),
+        }
+    }
+
+    /// When the series first shows a geometric tail (a singularity within reach: the ANM
+    /// signature of a nearby bifurcation or of the sharp turn of an imperfect path), one linear
+    /// buckling analysis about the step's start predicts the bifurcation load. Returns it for
+    /// the step where it was computed.
+    fn watch_bifurcation(
+        &mut self,
+        step: usize,
+        series: &PathSeries,
+        u_hat: &[f64],
+    ) -> Option<f64> {
+        if !self.options.predict_bifurcation
+            || self.prediction.is_some()
+            || series.load[1] <= 0.0
+            || self.negative_pivots.is_some_and(|n| n > 0)
+            || geometric_ratio(series).is_none()
+        {
+            return None;
+        }
+        let t = Instant::now();
+        let start = self.options.bifurcation_mode_guess.clone();
+        let predicted = predict_bifurcation(
+            self.problem,
+            &self.state,
+            u_hat,
+            self.factor,
+            &self.matrix,
+            start,
+        );
+        self.statistics.bifurcation_seconds += t.elapsed().as_secs_f64();
+        match predicted {
+            Ok(load) => {
+                self.prediction = Some(load);
+                Some(load)
+            }
+            Err(error) => {
+                self.warnings.push(format!(
+                    "step {step}: bifurcation prediction by linear buckling at load {:.6e} failed: {error}",
+                    self.state.load
+                ));
+                // Do not retry at every step.
+                self.prediction = Some(f64::INFINITY);
+                None
+            }
+        }
+    }
+
+    /// The plain series range, the Padé approximant (when enabled) and its range.
+    fn ranges(&self, series: &PathSeries) -> (f64, Option<PadeApproximant>, Option<f64>) {
+        let plain = series_step_length(series, self.options.series_tolerance);
+        let pade = if self.options.pade {
+            PadeApproximant::new(series).ok()
         } else {
             None
         };
         let pade_length = pade
             .as_ref()
-            .map(|p| p.pade_step_length(options.series_tolerance));
+            .map(|p| p.pade_step_length(self.options.series_tolerance));
+        (plain, pade, pade_length)
+    }
+
+    /// The step's end point: the step length (capped, shortened to hit `max_load`), then the
+    /// residual check, a Riks correction when needed, or halving.
+    fn accept_end(
+        &mut self,
+        step: usize,
+        series: &PathSeries,
+        pade: Option<&PadeApproximant>,
+        plain: f64,
+        pade_length: Option<f64>,
+    ) -> Result<AcceptedEnd, SolveError> {
+        let options = self.options;
+        let evaluator = |a: f64| {
+            let use_pade = pade_length.is_some_and(|l| l > plain && a > plain);
+            evaluate(series, if use_pade { pade } else { None }, a)
+        };
         let mut a = match pade_length {
             Some(l) if l.is_finite() && l > plain => l,
             _ => plain,
-        };
-        let evaluator = |a: f64| {
-            let use_pade = pade_length.is_some_and(|l| l > plain && a > plain);
-            evaluate(&series, if use_pade { pade.as_ref() } else { None }, a)
         };
         if !a.is_finite() {
             a = if options.max_step_length.is_finite() {
@@ -385,34 +606,38 @@ pub fn follow_path_anm<M: EnergyModel>(
         let mut hit_max_load = false;
         if let Some(max_load) = options.max_load
             && evaluator(a).load >= max_load
-            && state.load < max_load
+            && self.state.load < max_load
         {
-            {
-                // Bisection for λ(a*) = max_load.
-                let (mut lo, mut hi) = (0.0, a);
-                for _ in 0..60 {
-                    let mid = 0.5 * (lo + hi);
-                    if evaluator(mid).load < max_load {
-                        lo = mid
-                    } else {
-                        hi = mid
-                    }
+            // Bisection for λ(a*) = max_load.
+            let (mut lo, mut hi) = (0.0, a);
+            for _ in 0..60 {
+                let mid = 0.5 * (lo + hi);
+                if evaluator(mid).load < max_load {
+                    lo = mid
+                } else {
+                    hi = mid
                 }
-                a = hi;
-                hit_max_load = true;
             }
+            a = hi;
+            hit_max_load = true;
         }
-        // End point, residual check, correction or halving.
-        let mut attempts = 0;
-        let (end, end_residual, corrections) = loop {
+        for _attempt in 0..=12 {
             let candidate = evaluator(a);
-            let residual = problem.relative_residual(&candidate.displacement, candidate.load);
-            statistics.residual_assemblies += 1;
+            let residual = self
+                .problem
+                .relative_residual(&candidate.displacement, candidate.load);
+            self.statistics.residual_assemblies += 1;
             if residual.is_finite() && residual <= options.residual_tolerance {
-                break (candidate, residual, 0);
+                return Ok(AcceptedEnd {
+                    state: candidate,
+                    residual,
+                    corrections: 0,
+                    step_length: a,
+                    hit_max_load,
+                });
             }
             // Riks corrector on the arc through the predicted point (works through limit points).
-            let corrected = if residual.is_finite() {
+            if residual.is_finite() {
                 let riks = RiksOptions {
                     tolerance: options.residual_tolerance * 1e-2,
                     max_iterations: options.corrector.max_iterations,
@@ -420,110 +645,99 @@ pub fn follow_path_anm<M: EnergyModel>(
                     constraint: ArcLengthConstraint::Linearized,
                     ..RiksOptions::default()
                 };
-                correct_on_arc(problem, factor, &state, &candidate, &riks, &mut statistics).ok()
-            } else {
-                None
-            };
-            if let Some(c) = corrected {
-                statistics.corrections += 1;
-                if c.relative_residual <= options.residual_tolerance {
-                    break (c.state, c.relative_residual, c.iterations);
+                if let Ok(c) = correct_on_arc(
+                    self.problem,
+                    self.factor,
+                    &self.state,
+                    &candidate,
+                    &riks,
+                    &mut self.statistics,
+                ) {
+                    self.statistics.corrections += 1;
+                    if c.relative_residual <= options.residual_tolerance {
+                        return Ok(AcceptedEnd {
+                            state: c.state,
+                            residual: c.relative_residual,
+                            corrections: c.iterations,
+                            step_length: a,
+                            hit_max_load,
+                        });
+                    }
                 }
             }
-            statistics.rejected_steps += 1;
-            attempts += 1;
+            self.statistics.rejected_steps += 1;
             a *= 0.5;
             hit_max_load = false;
-            if attempts > 12 {
-                let error = SolveError::Path {
-                    load: state.load,
-                    message: format!(
-                        "step {step}: residual {residual:.3e} above tolerance {:.1e} even after 12 halvings and arc-length corrections",
-                        options.residual_tolerance
-                    ),
-                };
-                return finish(state, statistics, PathStop::Failed(error), bifurcation);
-            }
-        };
-        // Interior points come from the series (their residual is computed and reported).
-        for k in 1..=options.interior_points {
-            let s = a * k as f64 / (options.interior_points + 1) as f64;
-            let inner = evaluator(s);
-            let residual = problem.relative_residual(&inner.displacement, inner.load);
-            statistics.residual_assemblies += 1;
-            if residual.is_nan() || residual > options.residual_tolerance {
-                // Only points that meet the tolerance are accepted (possible near the end of a
-                // step whose end point needed a correction).
+        }
+        Err(SolveError::Path {
+            load: self.state.load,
+            message: format!(
+                "step {step}: residual above tolerance {:.1e} even after 12 halvings and arc-length corrections",
+                options.residual_tolerance
+            ),
+        })
+    }
+
+    /// Interior points from the series; only those at the residual tolerance are reported.
+    fn dense_output(
+        &mut self,
+        step: usize,
+        length: f64,
+        evaluator: &dyn Fn(f64) -> PathState,
+        predicted: Option<f64>,
+        observer: &mut dyn FnMut(&PathEvent) -> PathControl,
+    ) -> Option<PathStop> {
+        let count = self.options.interior_points;
+        for k in 1..=count {
+            let inner = evaluator(length * k as f64 / (count + 1) as f64);
+            let residual = self
+                .problem
+                .relative_residual(&inner.displacement, inner.load);
+            self.statistics.residual_assemblies += 1;
+            if residual.is_nan() || residual > self.options.residual_tolerance {
                 continue;
             }
-            let control = observer(&PathEvent {
+            let event = PathEvent {
                 step,
                 interior: true,
                 state: &inner,
                 relative_residual: residual,
                 predicted_bifurcation: predicted,
-            });
-            if control == PathControl::Stop {
-                statistics.steps = step;
-                return finish(inner, statistics, PathStop::Observer, bifurcation);
+            };
+            if observer(&event) == PathControl::Stop {
+                self.statistics.steps = step;
+                self.state = inner;
+                return Some(PathStop::Observer);
             }
         }
-        if let Some(p) = predicted {
-            if last_prediction.is_some_and(|q| (p - q).abs() <= PREDICTION_AGREEMENT * p.abs()) {
-                trusted_prediction = Some(p);
-            }
-            last_prediction = Some(p);
-            let detected = trusted_prediction.unwrap_or(p);
-            if bifurcation.is_none() && end.load >= detected {
-                bifurcation = Some((detected, step));
-            }
-        }
-        steps_log.push(AnmStep {
-            step,
-            load_range: (state.load, end.load),
-            step_length: a,
-            series_step_length: plain,
-            pade_step_length: pade_length,
-            end_residual,
-            correction_iterations: corrections,
-            geometric_radius: geometric_ratio(&series),
-            predicted_bifurcation: predicted,
-        });
-        statistics.steps = step;
-        // The next step continues the path tangent at this step's end (not at its start: past a
-        // sharp turn the two can point apart).
-        previous = Some(series.evaluate_derivative(a));
-        state = end;
-        if observer(&PathEvent {
-            step,
-            interior: false,
-            state: &state,
-            relative_residual: end_residual,
-            predicted_bifurcation: predicted,
-        }) == PathControl::Stop
-        {
-            return finish(state, statistics, PathStop::Observer, bifurcation);
-        }
-        if hit_max_load {
-            return finish(state, statistics, PathStop::MaxLoad, bifurcation);
-        }
+        None
     }
-    finish(state, statistics, PathStop::MaxSteps, bifurcation)
 }
 
 /// Smallest bifurcation load ahead, from linear buckling about `state` along the path tangent
-/// $`dU/d\lambda = \hat U`$: $`(K_t + \mu\,\partial_\lambda K_t)\varphi = 0`$, $`\lambda_b = \lambda + \mu`$.
+/// $`dU/d\lambda = \hat U`$: $`(K_t + \mu\,\partial_\lambda K_t)\varphi = 0`$,
+/// $`\lambda_b = \lambda + \mu`$. `tangent` must be $`K_t`$ at `state` and `factor` its
+/// factorisation; `start` warm-starts the eigen-solver.
 fn predict_bifurcation<M: EnergyModel>(
     problem: &Problem<M>,
     state: &PathState,
     u_hat: &[f64],
     factor: &SparseFactorization,
     tangent: &SparseMatrix,
-) -> Option<f64> {
+    start: Option<Vec<f64>>,
+) -> Result<f64, SolveError> {
     let mut b = problem.new_matrix();
     problem.tangent_derivative_into(&state.displacement, state.load, u_hat, 1.0, &mut b);
-    let options = BucklingOptions::default();
-    smallest_positive_buckling(tangent, factor, &b, &options)
-        .ok()
-        .and_then(|s| s.modes.first().map(|m| state.load + m.load_factor))
+    let options = BucklingOptions {
+        tolerance: 1e-8,
+        start,
+        ..BucklingOptions::default()
+    };
+    let solution = smallest_positive_buckling(tangent, factor, &b, &options)
+        .map_err(SolveError::linear("bifurcation prediction: eigen-solver"))?;
+    solution
+        .modes
+        .first()
+        .map(|m| state.load + m.load_factor)
+        .ok_or_else(|| SolveError::Buckling("no positive buckling load ahead".into()))
 }

@@ -109,4 +109,7 @@ pub struct PathResult {
     pub stop: PathStop,
     /// Bifurcation detected along the path: load, and the step at which it was detected.
     pub bifurcation: Option<(f64, usize)>,
+    /// Diagnostics that did not stop the path (e.g. a failed eigen-solve while locating a
+    /// bifurcation), each saying where and why.
+    pub warnings: Vec<String>,
 }

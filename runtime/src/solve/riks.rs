@@ -267,6 +267,7 @@ pub fn follow_path_riks<M: EnergyModel>(
         statistics,
         stop,
         bifurcation: None,
+        warnings: Vec::new(),
     }
 }
 
