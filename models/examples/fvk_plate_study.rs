@@ -4,6 +4,9 @@
 //! ```text
 //! cargo run -p wrinkle-models --release --example fvk_plate_study -- kirchhoff [variant]
 //! cargo run -p wrinkle-models --release --example fvk_plate_study -- spectrum
+//! cargo run -p wrinkle-models --release --example fvk_plate_study -- newton-floor NX NY GX GY
+//! cargo run -p wrinkle-models --release --example fvk_plate_study -- timing NX NY GX GY
+//! cargo run -p wrinkle-models --release --example fvk_plate_study -- report
 //! cargo run -p wrinkle-models --release --example fvk_plate_study -- buckling VARIANT NX NY GX GY [...]
 //! ```
 //!
@@ -402,9 +405,11 @@ fn main() {
         Some("spectrum") => spectrum(),
         Some("newton-floor") => newton_floor(&arguments[1..]),
         Some("timing") => timing(&arguments[1..]),
+        Some("report") => println!("{}", wrinkle_models::FvkPlate::SPEC.simplification_report),
         Some("buckling") => buckling(&arguments[1], &arguments[2..]),
         _ => eprintln!(
-            "usage: fvk_plate_study kirchhoff [variant] | spectrum | buckling VARIANT NX NY GX GY ..."
+            "usage: fvk_plate_study kirchhoff [variant] | spectrum | buckling VARIANT NX NY GX GY ... | \
+             newton-floor NX NY GX GY | timing NX NY GX GY | report"
         ),
     }
 }
