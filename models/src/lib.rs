@@ -1,8 +1,10 @@
 //! Wrinkling models declared as energy densities in the `energy_model!` DSL, and a registry
 //! that lets the CLI pick one by name while every solver stays monomorphised per model.
 
+pub mod fvk_plate;
 pub mod reference_envelope;
 
+pub use fvk_plate::FvkPlate;
 pub use reference_envelope::ReferenceEnvelope;
 
 use wrinkle_runtime::{EnergyModel, ModelSpec};
@@ -17,7 +19,7 @@ pub trait ModelVisitor {
 
 /// Specifications of every registered model, in registry order.
 pub fn catalogue() -> Vec<&'static ModelSpec> {
-    vec![ReferenceEnvelope::SPEC]
+    vec![ReferenceEnvelope::SPEC, FvkPlate::SPEC]
 }
 
 /// Names of every registered model.
@@ -33,6 +35,7 @@ fn zero_instance<M: EnergyModel>() -> M {
 pub fn with_model<V: ModelVisitor>(name: &str, visitor: V) -> Option<V::Output> {
     match name {
         "reference-envelope" => Some(visitor.visit(zero_instance::<ReferenceEnvelope>())),
+        "fvk-plate" => Some(visitor.visit(zero_instance::<FvkPlate>())),
         _ => None,
     }
 }
