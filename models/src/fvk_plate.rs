@@ -3,9 +3,9 @@
 //! The project's "full model": it resolves every wrinkle, and is the reference the envelope
 //! models are checked against.
 //!
-//! Unknowns, in dof order, with the role each field plays (roles are not declared in the DSL
-//! yet): `u` in-plane displacement along X, `v` in-plane displacement along Y, `w` deflection,
-//! `theta_x` and `theta_y` the rotations, i.e. the slopes of the normal,
+//! Unknowns, in dof order, with the role each field plays: `u` [displacement_x], `v`
+//! [displacement_y] the in-plane displacements, `w` [deflection], `theta_x` [rotation_x] and
+//! `theta_y` [rotation_y] the rotations, i.e. the slopes of the normal,
 //! $`\boldsymbol\theta \approx \nabla w`$ (**sign convention**: $`\theta_x`$ is the slope
 //! $`\partial w/\partial X`$ in the Kirchhoff limit, so a positive $`\theta_x`$ turns the normal
 //! toward $`+X`$; it is a rotation about $`-Y`$).
@@ -52,7 +52,8 @@
 wrinkle_macros::energy_model! {
     /// Föppl–von Kármán plate, Reissner–Mindlin bending and reduced-integrated shear (Damil, Potier-Ferry & Hu 2014, eqs 16–17).
     model FvkPlate as "fvk-plate" {
-        fields: u, v, w, theta_x, theta_y;
+        fields: u [displacement_x], v [displacement_y], w [deflection],
+            theta_x [rotation_x], theta_y [rotation_y];
         parameters: young "Young's modulus E (MPa)", poisson "Poisson ratio",
             thickness "thickness h (mm)";
         let membrane_stiffness = young * thickness / (1 - poisson^2);
