@@ -35,7 +35,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ] {
             scene.apply_override(&setting)?;
         }
-        let report = run(&scene, &base.join(method))?;
+        let report = run(&scene, &base.join(method), false)?;
         let s = &report.summary;
         let points: Vec<PathPoint> = serde_json::from_value(s["path"].clone())?;
         let worst = points.iter().map(|p| p.residual).fold(0.0, f64::max);
@@ -58,17 +58,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // Agreement: ANM max envelope/h interpolated at each Riks point past the threshold.
     let (anm, riks) = (&curves[0], &curves[1]);
     let mut worst: f64 = 0.0;
-    for p in riks.iter().filter(|p| p.max_envelope_over_h > 0.1) {
+    for p in riks.iter().filter(|p| p.max_amplitude_over_h > 0.1) {
         if let Some(w) = anm.windows(2).find_map(|w| {
             (w[0].lambda <= p.lambda && p.lambda <= w[1].lambda && w[1].lambda > w[0].lambda).then(
                 || {
                     let t = (p.lambda - w[0].lambda) / (w[1].lambda - w[0].lambda);
-                    w[0].max_envelope_over_h
-                        + t * (w[1].max_envelope_over_h - w[0].max_envelope_over_h)
+                    w[0].max_amplitude_over_h
+                        + t * (w[1].max_amplitude_over_h - w[0].max_amplitude_over_h)
                 },
             )
         }) {
-            worst = worst.max((w - p.max_envelope_over_h).abs() / p.max_envelope_over_h);
+            worst = worst.max((w - p.max_amplitude_over_h).abs() / p.max_amplitude_over_h);
         }
     }
     println!(

@@ -220,8 +220,8 @@ impl RunData {
             .iter()
             .map(|p| ResponsePoint {
                 load: p.lambda,
-                max_amplitude_over_h: 2.0 * p.max_envelope_over_h,
-                centre_amplitude_over_h: Some(2.0 * p.center_envelope_over_h.abs()),
+                max_amplitude_over_h: p.max_amplitude_over_h,
+                centre_amplitude_over_h: Some(p.centre_amplitude_over_h.abs()),
                 step_end: !p.interior,
             })
             .collect();
@@ -237,8 +237,8 @@ impl RunData {
             .iter()
             .filter(|p| p.lambda >= self.critical_load)
             .filter_map(|p| {
-                p.closed_form_envelope_over_h
-                    .map(|a| (p.lambda / self.critical_load, 2.0 * a))
+                p.closed_form_amplitude_over_h
+                    .map(|a| (p.lambda / self.critical_load, a))
             })
             .collect();
         if !closed.is_empty() {
@@ -382,7 +382,7 @@ impl RunData {
         let target = s["scene"]["solver"]["max_envelope_over_h"]
             .as_f64()
             .map(|t| 2.0 * t);
-        let final_amplitude = last.map(|p| 2.0 * p.max_envelope_over_h);
+        let final_amplitude = last.map(|p| p.max_amplitude_over_h);
         let reached = !s["failed"].as_bool().unwrap_or(true)
             && match (final_amplitude, target) {
                 (Some(a), Some(t)) => a >= t * (1.0 - 1e-9),

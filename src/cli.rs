@@ -8,6 +8,7 @@ use crate::analytic;
 use crate::closed_form;
 use crate::commands;
 use crate::scene::{LoadKind, Scene};
+use crate::threshold::Threshold;
 use clap::{Args, Parser, Subcommand};
 use std::ffi::OsString;
 use std::io::Write;
@@ -33,6 +34,9 @@ pub enum Command {
         /// Print exactly one JSON object on stdout instead of a human summary.
         #[arg(long)]
         json: bool,
+        /// No progress reports on stderr.
+        #[arg(long, short)]
+        quiet: bool,
     },
     /// Path following (ANM or Riks) writing results into an output directory.
     Run {
@@ -42,6 +46,25 @@ pub enum Command {
         /// Output directory (overrides `output.directory`).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
+        /// No progress reports on stderr.
+        #[arg(long, short)]
+        quiet: bool,
+    },
+    /// Runs the scene with several models into `OUT/MODEL/` and compares thresholds,
+    /// wavelengths and loads at given amplitudes (`compare.csv`, `compare.json`, `compare.png`).
+    Compare {
+        /// Scene and overrides.
+        #[command(flatten)]
+        scene: SceneArguments,
+        /// Comma-separated model names (default: every registered model).
+        #[arg(long, value_delimiter = ',')]
+        models: Vec<String>,
+        /// Output directory (default: `output.directory`/compare).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// No progress reports on stderr.
+        #[arg(long, short)]
+        quiet: bool,
     },
     /// Closed forms of the clamped rectangle in biaxial load (THEORY.md §8): exact minimum of
     /// (42), approximations (44) and (96), Galerkin integrals, amplitude law (61)–(62) and a
@@ -119,33 +142,49 @@ where
 /// Executes one subcommand, writing its results on stdout.
 pub fn execute(command: &Command) -> Result<(), Error> {
     match command {
-        Command::Buckle { scene, json } => {
+        Command::Buckle { scene, json, quiet } => {
             let scene = scene.resolve()?;
-            let report = commands::buckle(&scene)?;
+            let report = commands::buckle(&scene, *quiet)?;
             if *json {
                 print_stdout(&format!("{}\n", buckle_json(&scene, &report)))
             } else {
                 print_stdout(&buckle_summary(&scene, &report))
             }
         }
-        Command::Run { scene, out } => {
+        Command::Run { scene, out, quiet } => {
             let mut scene = scene.resolve()?;
             if let Some(directory) = out {
                 scene.output.directory = directory.display().to_string();
             }
             let directory = PathBuf::from(&scene.output.directory);
-            let report = commands::run(&scene, &directory)?;
-            let s = &report.summary;
-            println!(
-                "{}: {} steps, {} factorisations, linear buckling load {:.6e}, detected bifurcation {}, {}",
-                s["model"].as_str().unwrap_or(""),
-                s["steps"],
-                s["statistics"]["factorizations"],
-                s["linear_buckling_load"].as_f64().unwrap_or(f64::NAN),
-                s["detected_bifurcation"]["load"],
-                s["stop"].as_str().unwrap_or("")
-            );
-            eprintln!("run finished; outputs in {}", directory.display());
+            commands::run(&scene, &directory, *quiet)?;
+            eprintln!("outputs in {}", directory.display());
+            Ok(())
+        }
+        Command::Compare {
+            scene,
+            models,
+            out,
+            quiet,
+        } => {
+            let scene = scene.resolve()?;
+            let models: Vec<String> = if models.is_empty() {
+                wrinkle_models::names()
+                    .iter()
+                    .map(|m| m.to_string())
+                    .collect()
+            } else {
+                models.clone()
+            };
+            let directory = out
+                .clone()
+                .unwrap_or_else(|| PathBuf::from(&scene.output.directory).join("compare"));
+            let comparison = crate::compare::compare(&scene, &models, &directory, *quiet)?;
+            print_stdout(&crate::compare::comparison_table(
+                &comparison,
+                crate::threshold::load_unit(&scene),
+            ))?;
+            eprintln!("comparison in {}", directory.display());
             Ok(())
         }
         Command::Analytic {
@@ -170,68 +209,56 @@ pub fn execute(command: &Command) -> Result<(), Error> {
     }
 }
 
-/// The `buckle --json` object: the report's keys, `details` merged in (without overwriting the
-/// report's own keys), and the effective scene under `scene`.
-pub fn buckle_json(scene: &Scene, report: &commands::BuckleReport) -> serde_json::Value {
-    let mut object = serde_json::Map::new();
-    if let serde_json::Value::Object(details) = &report.details {
-        object.extend(details.clone());
-    } else if !report.details.is_null() {
-        object.insert("details".to_string(), report.details.clone());
+/// The `buckle --json` object: the threshold's keys (`docs/outputs.md`) and the effective
+/// scene under `scene`.
+pub fn buckle_json(scene: &Scene, report: &Threshold) -> serde_json::Value {
+    let mut value = crate::threshold::threshold_json(scene, report);
+    if let Some(object) = value.as_object_mut() {
+        object.insert("scene".to_string(), scene.echo_json());
     }
-    object.insert("model".to_string(), report.model.clone().into());
-    object.insert(
-        "critical_load".to_string(),
-        json_number(report.critical_load),
-    );
-    object.insert("wavenumber".to_string(), json_number(report.wavenumber));
-    object.insert("wavelength".to_string(), json_number(report.wavelength));
-    object.insert("dofs".to_string(), report.dofs.into());
-    object.insert(
-        "closed_form_critical_load".to_string(),
-        report
-            .closed_form_critical_load
-            .map_or(serde_json::Value::Null, json_number),
-    );
-    object.insert("scene".to_string(), scene.echo_json());
-    serde_json::Value::Object(object)
-}
-
-/// A JSON number, or `null` for a non-finite value (JSON has no NaN or infinity).
-fn json_number(value: f64) -> serde_json::Value {
-    serde_json::Number::from_f64(value).map_or(serde_json::Value::Null, serde_json::Value::Number)
+    value
 }
 
 /// The human summary printed by `buckle`.
-pub fn buckle_summary(scene: &Scene, report: &commands::BuckleReport) -> String {
+pub fn buckle_summary(scene: &Scene, report: &Threshold) -> String {
+    let critical = report.critical_load();
     let mut lines = vec![
         format!("scene: {}", scene.source),
         format!("model: {} ({} dofs)", report.model, report.dofs),
     ];
     match scene.load.kind {
-        LoadKind::Biaxial => {
-            lines.push(format!(
-                "critical load: λ_c = {:.6e} N/mm (N_X = {:.6e} N/mm, N_Y = {} N/mm)",
-                report.critical_load, -report.critical_load, scene.load.tension_y
-            ));
-        }
-        LoadKind::Strip => {
-            lines.push(format!(
-                "critical load: λ_c = {:.6e} mm (end displacement)",
-                report.critical_load
-            ));
-        }
+        LoadKind::Biaxial => lines.push(format!(
+            "critical load: λ_c = {critical:.6e} N/mm (N_X = {:.6e} N/mm, N_Y = {} N/mm)",
+            -critical, scene.load.tension_y
+        )),
+        LoadKind::Strip => lines.push(format!(
+            "critical load: λ_c = {critical:.6e} mm (end displacement)"
+        )),
+    }
+    match (report.wavenumber, report.wavelength) {
+        (Some(q), _) => lines.push(format!(
+            "wavenumber: Q = {q:.6e} 1/mm ({}), wavelength 2π/Q = {:.6} mm",
+            report.wavenumber_source,
+            closed_form::wavelength(q)
+        )),
+        (None, Some(l)) => lines.push(format!("wavelength of the mode: {l:.6} mm")),
+        (None, None) => {}
+    }
+    if let Some((reference, _)) = crate::threshold::closed_form_threshold(scene) {
+        let difference = (critical - reference) / reference;
+        lines.push(format!(
+            "closed form (42), envelope: λ_c = {reference:.6e}, relative difference {difference:+.3e}"
+        ));
     }
     lines.push(format!(
-        "wavenumber: Q = {:.6e} 1/mm, wavelength 2π/Q = {:.6} mm",
-        report.wavenumber,
-        closed_form::wavelength(report.wavenumber)
+        "{} buckling analyses, {:.2} s",
+        report.evaluations, report.seconds
     ));
-    if let Some(reference) = report.closed_form_critical_load {
-        let difference = (report.critical_load - reference) / reference;
-        lines.push(format!(
-            "closed form (42): λ_c = {reference:.6e}, relative difference {difference:+.3e}"
-        ));
+    for note in &report.notes {
+        lines.push(format!("note: {note}"));
+    }
+    for warning in &report.warnings {
+        lines.push(format!("warning ({}): {}", warning.check, warning.message));
     }
     let mut text = lines.join("\n");
     text.push('\n');

@@ -13,10 +13,14 @@ pub mod analytic;
 pub mod cli;
 pub mod closed_form;
 pub mod commands;
+pub mod compare;
 pub mod output;
+pub mod physics;
 pub mod run;
+pub mod run_outputs;
 pub mod scene;
 pub mod setup;
+pub mod threshold;
 
 pub use scene::Scene;
 
@@ -50,15 +54,23 @@ pub enum Error {
     Solver(String),
     /// A requested feature is not implemented yet.
     NotImplemented(String),
+    /// The run stopped before what was asked (`max_steps`, `max_load`, never wrinkled).
+    Incomplete(String),
+    /// The run finished but a validity check of the model failed (scale separation,
+    /// ellipticity at the threshold, mode resolution).
+    Invalid(String),
 }
 
 impl Error {
-    /// Process exit code: 2 for scene and usage errors (the input is wrong), 1 for everything
-    /// that went wrong while computing or writing results.
+    /// Process exit code (table in `docs/outputs.md`): 2 for scene and usage errors (the input
+    /// is wrong), 1 for a failure while computing or writing results, 3 for a run that stopped
+    /// before its target, 4 for a result outside the model's validity.
     pub fn exit_code(&self) -> i32 {
         match self {
             Error::Scene { .. } | Error::Usage(_) => 2,
             Error::Io { .. } | Error::Solver(_) | Error::NotImplemented(_) => 1,
+            Error::Incomplete(_) => 3,
+            Error::Invalid(_) => 4,
         }
     }
 
@@ -97,6 +109,8 @@ impl fmt::Display for Error {
             Error::Io { path, error } => write!(formatter, "{path}: {error}"),
             Error::Solver(message) => write!(formatter, "solver: {message}"),
             Error::NotImplemented(message) => write!(formatter, "not implemented: {message}"),
+            Error::Incomplete(message) => write!(formatter, "incomplete: {message}"),
+            Error::Invalid(message) => write!(formatter, "outside the model's validity: {message}"),
         }
     }
 }

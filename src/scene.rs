@@ -52,7 +52,7 @@ pub const KEYS: &[&str] = &[
     "solver.tolerance",
     "solver.max_steps",
     "solver.max_load",
-    "solver.max_envelope_over_h",
+    "solver.max_amplitude_over_h",
     "solver.perturbation",
     "solver.pade",
     "solver.method",
@@ -176,10 +176,14 @@ pub struct SolverSpec {
     pub max_steps: usize,
     /// Stop at this load $`\lambda`$; 0 means no limit. Key `solver.max_load`.
     pub max_load: f64,
-    /// Stop when $`\max |w_{env}|/h`$ reaches this value, key `solver.max_envelope_over_h`.
-    pub max_envelope_over_thickness: f64,
-    /// Small uniform transverse load on the envelope, $`f = \text{perturbation}\cdot h D Q^4`$
-    /// (dimensionless: the envelope/h it would give on an unloaded sheet), key `solver.perturbation`.
+    /// Stop when the maximum physical wrinkle amplitude over the thickness reaches this value,
+    /// key `solver.max_amplitude_over_h` (the older key `solver.max_envelope_over_h` sets it to
+    /// twice its value: the physical amplitude of an envelope model is $`2|w_\text{env}|`$).
+    pub max_amplitude_over_thickness: f64,
+    /// Size of the imperfection that selects the wrinkled branch, key `solver.perturbation`: a
+    /// fixed transverse load shaped like the first buckling mode, $`F = \varepsilon K_0\varphi`$
+    /// ($`K_0`$ the tangent of the unloaded state), scaled so that the physical wrinkle amplitude
+    /// it gives on the unloaded sheet is `perturbation` thicknesses.
     pub perturbation: f64,
     /// Use Padé approximants, key `solver.pade`.
     pub pade: bool,
@@ -254,7 +258,7 @@ impl Default for Scene {
                 tolerance: 1e-6,
                 max_steps: 200,
                 max_load: 0.0,
-                max_envelope_over_thickness: 2.0,
+                max_amplitude_over_thickness: 4.0,
                 perturbation: 1e-4,
                 pade: false,
                 method: PathMethod::Anm,
@@ -446,8 +450,8 @@ impl Scene {
         let _ = writeln!(text, "max_load = {}", toml_float(solver.max_load));
         let _ = writeln!(
             text,
-            "max_envelope_over_h = {}",
-            toml_float(solver.max_envelope_over_thickness)
+            "max_amplitude_over_h = {}",
+            toml_float(solver.max_amplitude_over_thickness)
         );
         let _ = writeln!(text, "perturbation = {}", toml_float(solver.perturbation));
         let _ = writeln!(text, "pade = {}", solver.pade);
@@ -497,7 +501,7 @@ impl Scene {
                 "tolerance": self.solver.tolerance,
                 "max_steps": self.solver.max_steps,
                 "max_load": self.solver.max_load,
-                "max_envelope_over_h": self.solver.max_envelope_over_thickness,
+                "max_amplitude_over_h": self.solver.max_amplitude_over_thickness,
                 "perturbation": self.solver.perturbation,
                 "pade": self.solver.pade,
                 "method": self.solver.method.as_str(),
@@ -600,8 +604,11 @@ impl Scene {
                 self.solver.max_steps = count(value, 1, usize::MAX).map_err(error)?
             }
             "solver.max_load" => self.solver.max_load = number(value).map_err(error)?,
+            "solver.max_amplitude_over_h" => {
+                self.solver.max_amplitude_over_thickness = number(value).map_err(error)?
+            }
             "solver.max_envelope_over_h" => {
-                self.solver.max_envelope_over_thickness = number(value).map_err(error)?
+                self.solver.max_amplitude_over_thickness = 2.0 * number(value).map_err(error)?
             }
             "solver.perturbation" => self.solver.perturbation = number(value).map_err(error)?,
             "solver.pade" => self.solver.pade = boolean(value).map_err(error)?,
@@ -665,7 +672,9 @@ impl Scene {
             "solver.tolerance" => positive(self.solver.tolerance),
             "solver.max_steps" => count_in_range(self.solver.max_steps, 1, usize::MAX),
             "solver.max_load" => at_least(self.solver.max_load, 0.0),
-            "solver.max_envelope_over_h" => positive(self.solver.max_envelope_over_thickness),
+            "solver.max_amplitude_over_h" | "solver.max_envelope_over_h" => {
+                positive(self.solver.max_amplitude_over_thickness)
+            }
             "solver.perturbation" => at_least(self.solver.perturbation, 0.0),
             "output.directory" => non_empty(&self.output.directory),
             "output.vtu_loads" => {

@@ -11,10 +11,11 @@
 //!   (mm), $`v = w = 0`$ on both; long sides free.
 
 use crate::Error;
+use crate::physics::Layout;
 use crate::scene::{LoadKind, Scene};
 use std::sync::Arc;
 use wrinkle_runtime::EnergyModel;
-use wrinkle_runtime::fem::{BodyLoad, DirichletCondition, EdgeTraction, Mesh};
+use wrinkle_runtime::fem::{DirichletCondition, EdgeTraction, Mesh};
 use wrinkle_runtime::problem::Problem;
 
 pub(crate) fn scene_error(scene: &Scene, key: &str, message: impl Into<String>) -> Error {
@@ -23,8 +24,10 @@ pub(crate) fn scene_error(scene: &Scene, key: &str, message: impl Into<String>) 
 
 /// Sets the model's parameters from the scene: `young`, `poisson`, `thickness` from
 /// `material.*`, `direction` (radians) from `model.direction` (degrees), `wavenumber` when fixed,
-/// then every `model.parameters.NAME`. A parameter the model declares but the scene cannot set
-/// is an error naming it.
+/// then every `model.parameters.NAME` (which wins over the standard source: `[model.parameters]
+/// young = 1.0` sets $`E`$ for this model). A parameter the model declares but the scene cannot
+/// set is an error naming it, and so is a `model.parameters` entry the model does not declare.
+/// Standard quantities a model does not declare (a plate has no `wavenumber`) are not passed.
 pub fn configure_model<M: EnergyModel>(
     scene: &Scene,
     model: &mut M,
@@ -33,6 +36,7 @@ pub fn configure_model<M: EnergyModel>(
     let spec = M::SPEC;
     for name in spec.parameters {
         let value = match *name {
+            other if scene.model.parameters.contains_key(other) => scene.model.parameters[other],
             "young" => scene.material.young_modulus,
             "poisson" => scene.material.poisson_ratio,
             "thickness" => scene.material.thickness,
@@ -72,31 +76,31 @@ pub fn configure_model<M: EnergyModel>(
     Ok(())
 }
 
-/// Field index by name, or a scene error saying the load kind needs it.
-fn field(scene: &Scene, spec: &wrinkle_runtime::ModelSpec, name: &str) -> Result<usize, Error> {
-    spec.field_index(name).ok_or_else(|| {
-        scene_error(
-            scene,
-            "load.kind",
-            format!(
-                "load kind `{}` needs a field `{name}`, model `{}` has fields {}",
-                scene.load.kind.as_str(),
-                spec.name,
-                spec.fields.join(", ")
-            ),
-        )
-    })
+/// The scene error for a `model.name` that is not in the registry.
+pub fn unknown_model(scene: &Scene) -> Error {
+    scene_error(
+        scene,
+        "model.name",
+        format!(
+            "unknown model `{}` (models: {})",
+            scene.model.name,
+            wrinkle_models::names().join(", ")
+        ),
+    )
 }
 
-/// Builds the problem of `scene` for `model` (parameters already set).
-/// `perturbation` adds a uniform fixed load on `w` (the envelope), used to follow the wrinkled
-/// branch in path following.
-pub fn build_problem<M: EnergyModel>(
-    scene: &Scene,
-    model: M,
-    perturbation: f64,
-) -> Result<Problem<M>, Error> {
-    let spec = M::SPEC;
+/// The field layout of `M` from its declared roles, or a scene error naming `model.name`.
+pub fn layout_of<M: EnergyModel>(scene: &Scene) -> Result<Layout, Error> {
+    Layout::from_spec(M::SPEC).map_err(|message| scene_error(scene, "model.name", message))
+}
+
+/// Builds the problem of `scene` for `model` (parameters already set), without imperfection.
+///
+/// The conditions follow from the field roles ([`Layout`]): a clamped edge sets every
+/// transverse field (deflection, rotations, envelopes, mean deflection) to zero; the in-plane
+/// conditions and loads are those of the load kind (module documentation).
+pub fn build_problem<M: EnergyModel>(scene: &Scene, model: M) -> Result<Problem<M>, Error> {
+    let layout = layout_of::<M>(scene)?;
     let mesh = Arc::new(
         Mesh::rectangle(
             scene.geometry.length_x,
@@ -107,25 +111,22 @@ pub fn build_problem<M: EnergyModel>(
         )
         .map_err(|e| scene_error(scene, "mesh", e.to_string()))?,
     );
-    let u = field(scene, spec, "u")?;
-    let v = field(scene, spec, "v")?;
-    let w = field(scene, spec, "w")?;
-    let fixed = |edge: &str, field: usize, value: f64| DirichletCondition {
+    let [u, v] = layout.in_plane;
+    let fixed = |edge: &str, field: usize| DirichletCondition {
         edge: edge.into(),
         field,
-        value,
+        value: 0.0,
         value_per_load: 0.0,
     };
     let mut conditions = Vec::new();
     let mut tractions = Vec::new();
-    match scene.load.kind {
+    let clamped_edges: &[&str] = match scene.load.kind {
         LoadKind::Biaxial => {
-            conditions.push(fixed("centre", u, 0.0));
-            conditions.push(fixed("centre", v, 0.0));
-            conditions.push(fixed("right_middle", v, 0.0));
-            for edge in ["left", "right", "bottom", "top"] {
-                conditions.push(fixed(edge, w, 0.0));
-            }
+            conditions.extend([
+                fixed("centre", u),
+                fixed("centre", v),
+                fixed("right_middle", v),
+            ]);
             for (edge, traction, proportional) in [
                 ("left", [1.0, 0.0], true),
                 ("right", [-1.0, 0.0], true),
@@ -139,48 +140,20 @@ pub fn build_problem<M: EnergyModel>(
                     proportional,
                 });
             }
+            &["left", "right", "bottom", "top"]
         }
         LoadKind::Strip => {
-            for edge in ["left", "right"] {
-                conditions.push(fixed(edge, v, 0.0));
-                conditions.push(fixed(edge, w, 0.0));
-            }
-            conditions.push(fixed("left", u, 0.0));
+            conditions.extend([fixed("left", u), fixed("left", v), fixed("right", v)]);
             conditions.push(DirichletCondition {
-                edge: "right".into(),
-                field: u,
-                value: 0.0,
                 value_per_load: 1.0,
+                ..fixed("right", u)
             });
+            &["left", "right"]
         }
-    }
-    // Any further field (rotations of a plate model, imaginary envelope, mean deflection) is
-    // clamped like the envelope on every edge where the envelope is.
-    let envelope_edges: Vec<String> = conditions
-        .iter()
-        .filter(|c| c.field == w)
-        .map(|c| c.edge.clone())
-        .collect();
-    for (k, _) in spec
-        .fields
-        .iter()
-        .enumerate()
-        .filter(|(k, _)| ![u, v, w].contains(k))
-    {
-        let edges = envelope_edges.clone();
-        for edge in edges {
-            conditions.push(fixed(&edge, k, 0.0));
-        }
-    }
-    let body = if perturbation != 0.0 {
-        vec![BodyLoad {
-            field: w,
-            value: perturbation,
-            proportional: false,
-        }]
-    } else {
-        vec![]
     };
-    Problem::new(model, mesh, &conditions, &tractions, &body)
+    for edge in clamped_edges {
+        conditions.extend(layout.transverse.iter().map(|&f| fixed(edge, f)));
+    }
+    Problem::new(model, mesh, &conditions, &tractions, &[])
         .map_err(|e| Error::Solver(format!("setting up the problem: {e}")))
 }

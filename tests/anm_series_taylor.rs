@@ -33,7 +33,12 @@ fn problem(perturbation: f64) -> Problem<ReferenceEnvelope> {
     }
     let mut model = ReferenceEnvelope::from_parameters(&[0.0; 5]);
     configure_model(&scene, &mut model, 0.235).unwrap();
-    build_problem(&scene, model, perturbation).unwrap()
+    let mut problem = build_problem(&scene, model).unwrap();
+    // A small fixed load on every free dof, so that the path leaves the trivial state.
+    for f in problem.loads.fixed.iter_mut() {
+        *f += perturbation;
+    }
+    problem
 }
 
 /// Least-squares polynomial coefficients (degree `degree`) of samples on [-1, 1].

@@ -56,11 +56,11 @@ fn check_example_one(nx: usize, ny: usize, order: usize) {
         format!("mesh.nx={nx}"),
         format!("mesh.ny={ny}"),
         format!("solver.order={order}"),
-        "solver.max_envelope_over_h=2".to_string(),
+        "solver.max_amplitude_over_h=4".to_string(),
     ];
     let refs: Vec<&str> = settings.iter().map(String::as_str).collect();
     let dir = output_directory(&format!("example-one-{nx}x{ny}"));
-    let report = run(&scene(&refs), &dir).unwrap();
+    let report = run(&scene(&refs), &dir, true).unwrap();
     assert!(report.failure.is_none());
     let summary = &report.summary;
     let points = path_of(summary);
@@ -70,7 +70,7 @@ fn check_example_one(nx: usize, ny: usize, order: usize) {
     let worst = points.iter().map(|p| p.residual).fold(0.0, f64::max);
     assert!(worst <= 1e-6, "worst relative residual {worst:e}");
     // Reached the target.
-    assert!(points.last().unwrap().max_envelope_over_h >= 2.0 - 1e-9);
+    assert!(points.last().unwrap().max_amplitude_over_h >= 4.0 - 1e-9);
     // Bifurcation.
     let detected = summary["detected_bifurcation"]["load"]
         .as_f64()
@@ -82,8 +82,8 @@ fn check_example_one(nx: usize, ny: usize, order: usize) {
     assert!(relative < 1e-4);
     // One-mode closed form near the threshold.
     let at = 1.003 * lambda_c;
-    let fe = interpolate(&points, at, |p| p.center_envelope_over_h).unwrap();
-    let closed = interpolate(&points, at, |p| p.closed_form_envelope_over_h.unwrap()).unwrap();
+    let fe = interpolate(&points, at, |p| p.centre_amplitude_over_h).unwrap();
+    let closed = interpolate(&points, at, |p| p.closed_form_amplitude_over_h.unwrap()).unwrap();
     eprintln!("λ/λc = 1.003: centre envelope/h FE {fe:.5}, closed form {closed:.5}");
     assert!(
         (fe - closed).abs() / closed < 0.05,
@@ -116,17 +116,17 @@ fn check_example_one(nx: usize, ny: usize, order: usize) {
     riks_settings.push("solver.method=riks");
     riks_settings.push("solver.max_steps=3000");
     let riks_dir = output_directory(&format!("example-one-riks-{nx}x{ny}"));
-    let riks = run(&scene(&riks_settings), &riks_dir).unwrap();
+    let riks = run(&scene(&riks_settings), &riks_dir, true).unwrap();
     let riks_points = path_of(&riks.summary);
     let mut compared = 0;
     for p in riks_points.iter().filter(|p| p.lambda > 1.01 * lambda_c) {
-        if let Some(anm) = interpolate(&points, p.lambda, |q| q.max_envelope_over_h) {
-            let difference = (anm - p.max_envelope_over_h).abs() / p.max_envelope_over_h;
+        if let Some(anm) = interpolate(&points, p.lambda, |q| q.max_amplitude_over_h) {
+            let difference = (anm - p.max_amplitude_over_h).abs() / p.max_amplitude_over_h;
             assert!(
                 difference < 1e-2,
                 "λ {}: ANM {anm} vs Riks {}",
                 p.lambda,
-                p.max_envelope_over_h
+                p.max_amplitude_over_h
             );
             compared += 1;
         }
@@ -165,15 +165,15 @@ fn example_one_large_steps_are_corrected_on_the_arc() {
         "mesh.nx=8",
         "mesh.ny=4",
         "solver.order=12",
-        "solver.max_envelope_over_h=1",
+        "solver.max_amplitude_over_h=2",
         "output.plots=false",
     ];
     let mut coarse_settings = base.to_vec();
     coarse_settings.push("solver.series_tolerance=1e-4");
     let coarse_dir = output_directory("corrector-coarse");
-    let coarse = run(&scene(&coarse_settings), &coarse_dir).unwrap();
+    let coarse = run(&scene(&coarse_settings), &coarse_dir, true).unwrap();
     let fine_dir = output_directory("corrector-fine");
-    let fine = run(&scene(&base), &fine_dir).unwrap();
+    let fine = run(&scene(&base), &fine_dir, true).unwrap();
     assert!(
         coarse.summary["statistics"]["corrections"]
             .as_u64()
@@ -186,14 +186,14 @@ fn example_one_large_steps_are_corrected_on_the_arc() {
     let mut compared = 0;
     for p in coarse_points
         .iter()
-        .filter(|p| !p.interior && p.max_envelope_over_h > 0.1)
+        .filter(|p| !p.interior && p.max_amplitude_over_h > 0.1)
     {
-        if let Some(w) = interpolate(&fine_points, p.lambda, |q| q.max_envelope_over_h) {
+        if let Some(w) = interpolate(&fine_points, p.lambda, |q| q.max_amplitude_over_h) {
             assert!(
-                (w - p.max_envelope_over_h).abs() / p.max_envelope_over_h < 1e-3,
+                (w - p.max_amplitude_over_h).abs() / p.max_amplitude_over_h < 1e-3,
                 "λ {}: {w} vs {}",
                 p.lambda,
-                p.max_envelope_over_h
+                p.max_amplitude_over_h
             );
             compared += 1;
         }

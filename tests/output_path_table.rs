@@ -20,24 +20,24 @@ fn sample_points() -> Vec<PathPoint> {
             interior: false,
             lambda: 0.0,
             n_x: Some(-0.0),
-            max_envelope: 0.0,
-            max_envelope_over_h: 0.0,
-            center_envelope_over_h: 0.0,
+            max_amplitude: 0.0,
+            max_amplitude_over_h: 0.0,
+            centre_amplitude_over_h: 0.0,
             residual: 0.0,
             elliptic: true,
-            closed_form_envelope_over_h: None,
+            closed_form_amplitude_over_h: None,
         },
         PathPoint {
             step: 1,
             interior: true,
             lambda: 0.1 + 1.0 / 3.0,
             n_x: None,
-            max_envelope: 1.234_567_890_123e-7,
-            max_envelope_over_h: 2.5e12,
-            center_envelope_over_h: -0.37,
+            max_amplitude: 1.234_567_890_123e-7,
+            max_amplitude_over_h: 2.5e12,
+            centre_amplitude_over_h: -0.37,
             residual: 3.3e-9,
             elliptic: false,
-            closed_form_envelope_over_h: Some(0.123_456_789),
+            closed_form_amplitude_over_h: Some(0.123_456_789),
         },
     ]
 }
@@ -77,12 +77,12 @@ fn path_csv_header_is_the_field_names_and_rows_parse_back_exactly() {
             interior: row[1].parse().unwrap(),
             lambda: number(row[2]),
             n_x: optional(row[3]),
-            max_envelope: number(row[4]),
-            max_envelope_over_h: number(row[5]),
-            center_envelope_over_h: number(row[6]),
+            max_amplitude: number(row[4]),
+            max_amplitude_over_h: number(row[5]),
+            centre_amplitude_over_h: number(row[6]),
             residual: number(row[7]),
             elliptic: row[8].parse().unwrap(),
-            closed_form_envelope_over_h: optional(row[9]),
+            closed_form_amplitude_over_h: optional(row[9]),
         };
         assert_eq!(&parsed, point);
         assert_eq!(parsed.lambda.to_bits(), point.lambda.to_bits());
@@ -97,7 +97,7 @@ fn path_point_json_round_trips_with_null_for_none() {
     let json = serde_json::to_string(&points).unwrap();
     let value: serde_json::Value = serde_json::from_str(&json).unwrap();
     assert!(value[1]["n_x"].is_null());
-    assert_eq!(value[1]["closed_form_envelope_over_h"], 0.123_456_789);
+    assert_eq!(value[1]["closed_form_amplitude_over_h"], 0.123_456_789);
     let back: Vec<PathPoint> = serde_json::from_str(&json).unwrap();
     assert_eq!(back, points);
 }

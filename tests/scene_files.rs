@@ -372,7 +372,7 @@ fn json_echo_uses_the_scene_key_names() {
     assert_eq!(echo["model"]["wavenumber"], 0.2);
     assert_eq!(echo["mesh"]["nx"], 32);
     assert_eq!(echo["load"]["kind"], "biaxial");
-    assert_eq!(echo["solver"]["max_envelope_over_h"], 2.0);
+    assert_eq!(echo["solver"]["max_amplitude_over_h"], 4.0);
     assert_eq!(echo["output"]["plots"], true);
     assert_eq!(Scene::default().echo_json()["model"]["wavenumber"], "auto");
 }

@@ -17,18 +17,22 @@ pub struct PathPoint {
     pub lambda: f64,
     /// Membrane force $`N_x = -\lambda`$ for the biaxial load, `None` otherwise.
     pub n_x: Option<f64>,
-    /// $`\max |w_\text{env}|`$ over the domain (mm).
-    pub max_envelope: f64,
-    /// $`\max |w_\text{env}| / h`$.
-    pub max_envelope_over_h: f64,
-    /// $`w_\text{env} / h`$ at the centre of the domain.
-    pub center_envelope_over_h: f64,
+    /// Maximum physical wrinkle amplitude over the domain (mm): $`\max|w|`$ for a plate,
+    /// $`2\max|w_\text{env}|`$ (or $`2\max|w_1|`$) for envelope models.
+    pub max_amplitude: f64,
+    /// `max_amplitude` over the thickness $`h`$.
+    pub max_amplitude_over_h: f64,
+    /// Local physical wrinkle amplitude at the centre of the domain over $`h`$: half the
+    /// peak-to-peak of $`w`$ within one wavelength of the centre for a plate,
+    /// $`2|w_\text{env}|`$ (or $`2|w_1|`$) at the centre for envelope models.
+    pub centre_amplitude_over_h: f64,
     /// Relative residual $`\lVert R \rVert / \lVert F \rVert`$ at that point.
     pub residual: f64,
     /// `true` when the Legendre–Hadamard (strong ellipticity) condition holds everywhere.
     pub elliptic: bool,
-    /// Closed-form amplitude $`w_\text{env} / h`$ at this load (THEORY eq. 61/62), when available.
-    pub closed_form_envelope_over_h: Option<f64>,
+    /// Closed-form physical amplitude at the centre over $`h`$ at this load, $`2a/h`$ of
+    /// THEORY.md eq. (61)/(62), for a clamped rectangle under biaxial load.
+    pub closed_form_amplitude_over_h: Option<f64>,
 }
 
 /// Column names of the CSV written by [`write_path_csv`], in order; they are the field names of
@@ -38,12 +42,12 @@ pub const PATH_CSV_COLUMNS: [&str; 10] = [
     "interior",
     "lambda",
     "n_x",
-    "max_envelope",
-    "max_envelope_over_h",
-    "center_envelope_over_h",
+    "max_amplitude",
+    "max_amplitude_over_h",
+    "centre_amplitude_over_h",
     "residual",
     "elliptic",
-    "closed_form_envelope_over_h",
+    "closed_form_amplitude_over_h",
 ];
 
 /// Writes the path as CSV to the file `path` (replaced atomically): a header line with
@@ -62,13 +66,13 @@ pub fn write_path_csv_to(mut writer: impl Write, points: &[PathPoint]) -> io::Re
             point.interior.to_string(),
             format_number(point.lambda),
             point.n_x.map(format_number).unwrap_or_default(),
-            format_number(point.max_envelope),
-            format_number(point.max_envelope_over_h),
-            format_number(point.center_envelope_over_h),
+            format_number(point.max_amplitude),
+            format_number(point.max_amplitude_over_h),
+            format_number(point.centre_amplitude_over_h),
             format_number(point.residual),
             point.elliptic.to_string(),
             point
-                .closed_form_envelope_over_h
+                .closed_form_amplitude_over_h
                 .map(format_number)
                 .unwrap_or_default(),
         ];

@@ -1,0 +1,263 @@
+//! `wrinkle compare`: the same scene through several models, side by side.
+//!
+//! Each model runs into `OUT/MODEL/` exactly as `wrinkle run` would (same problem, same
+//! imperfection size, same amplitude target); then `OUT/compare.csv`, `OUT/compare.json` and
+//! the overlaid response plot `OUT/compare.png|svg` put the thresholds, wavelengths and the
+//! loads at given physical amplitudes next to each other. A model that fails does not stop the
+//! others: its row says why.
+
+use crate::Error;
+use crate::output::{
+    PathPoint, Quantity, Response, ResponsePoint, plot_comparison, write_bytes_atomically,
+    write_json,
+};
+use crate::run::{RunOutcome, run};
+use crate::scene::{LoadKind, Scene};
+use crate::threshold::closed_form_threshold;
+use serde_json::json;
+use std::path::Path;
+
+/// Physical amplitudes $`a/h`$ at which the loads are compared.
+pub const AMPLITUDE_LEVELS: [f64; 3] = [0.5, 1.0, 2.0];
+
+/// One model's line of the comparison.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct CompareRow {
+    /// Model name.
+    pub model: String,
+    /// `reached`, `incomplete`, `invalid`, `failed` or `error`.
+    pub outcome: String,
+    /// Why it did not reach its target, if it did not.
+    pub reason: Option<String>,
+    /// Critical load of linear buckling.
+    pub critical_load: Option<f64>,
+    /// $`\lambda_c`$ relative to the first model's.
+    pub critical_load_ratio: Option<f64>,
+    /// Wavenumber $`Q`$ (1/mm), envelope models.
+    pub wavenumber: Option<f64>,
+    /// Wavelength (mm).
+    pub wavelength: Option<f64>,
+    /// Load at which the maximum physical amplitude first reaches each of
+    /// [`AMPLITUDE_LEVELS`] (linear interpolation along the path).
+    pub load_at_amplitude: Vec<Option<f64>>,
+    /// Free unknowns.
+    pub dofs: Option<usize>,
+    /// Wall-clock seconds of the run.
+    pub seconds: Option<f64>,
+}
+
+/// Result of a comparison.
+#[derive(Clone, Debug)]
+pub struct Comparison {
+    /// One row per model, in the order asked.
+    pub rows: Vec<CompareRow>,
+    /// The closed-form threshold (eq. 42) when the scene has one.
+    pub closed_form_critical_load: Option<f64>,
+}
+
+/// Load at which `amplitude` (over $`h`$) is first reached.
+pub fn load_at_amplitude(points: &[PathPoint], amplitude: f64) -> Option<f64> {
+    points.windows(2).find_map(|pair| {
+        let (a, b) = (&pair[0], &pair[1]);
+        (a.max_amplitude_over_h < amplitude && b.max_amplitude_over_h >= amplitude).then(|| {
+            let t = (amplitude - a.max_amplitude_over_h)
+                / (b.max_amplitude_over_h - a.max_amplitude_over_h);
+            a.lambda + t * (b.lambda - a.lambda)
+        })
+    })
+}
+
+fn row_of(model: &str, summary: &serde_json::Value, outcome: &RunOutcome) -> CompareRow {
+    let points: Vec<PathPoint> =
+        serde_json::from_value(summary["path"].clone()).unwrap_or_default();
+    let (name, reason) = match outcome {
+        RunOutcome::Reached => ("reached", None),
+        RunOutcome::Failed(r) => ("failed", Some(r.clone())),
+        RunOutcome::Incomplete(r) => ("incomplete", Some(r.clone())),
+        RunOutcome::Invalid(r) => ("invalid", Some(r.clone())),
+    };
+    CompareRow {
+        model: model.to_string(),
+        outcome: name.into(),
+        reason,
+        critical_load: summary["linear_buckling_load"].as_f64(),
+        critical_load_ratio: None,
+        wavenumber: summary["wavenumber"].as_f64(),
+        wavelength: summary["wavelength"].as_f64(),
+        load_at_amplitude: AMPLITUDE_LEVELS
+            .iter()
+            .map(|&a| load_at_amplitude(&points, a))
+            .collect(),
+        dofs: summary["dofs"].as_u64().map(|d| d as usize),
+        seconds: summary["timings"]["total"].as_f64(),
+    }
+}
+
+fn response_of(model: &str, summary: &serde_json::Value, load: &Quantity) -> Option<Response> {
+    let points: Vec<PathPoint> = serde_json::from_value(summary["path"].clone()).ok()?;
+    let critical = summary["linear_buckling_load"].as_f64()?;
+    let response_points = points
+        .iter()
+        .map(|p| ResponsePoint {
+            load: p.lambda,
+            max_amplitude_over_h: p.max_amplitude_over_h,
+            centre_amplitude_over_h: Some(p.centre_amplitude_over_h),
+            step_end: !p.interior,
+        })
+        .collect();
+    Some(Response::new(
+        model,
+        load.clone(),
+        critical,
+        response_points,
+    ))
+}
+
+/// Runs `scene` with each of `models` into `directory/MODEL/` and writes the comparison files.
+pub fn compare(
+    scene: &Scene,
+    models: &[String],
+    directory: &Path,
+    quiet: bool,
+) -> Result<Comparison, Error> {
+    let load = match scene.load.kind {
+        LoadKind::Biaxial => Quantity::biaxial_load(),
+        LoadKind::Strip => Quantity::end_displacement(),
+    };
+    let mut rows = Vec::new();
+    let mut responses = Vec::new();
+    for model in models {
+        let mut one = scene.clone();
+        one.model.name = model.clone();
+        let out = directory.join(model);
+        match run(&one, &out, quiet) {
+            Ok(report) => {
+                rows.push(row_of(model, &report.summary, &report.outcome));
+                responses.extend(response_of(model, &report.summary, &load));
+            }
+            Err(error @ Error::Scene { .. }) => return Err(error),
+            Err(error) => rows.push(CompareRow {
+                model: model.clone(),
+                outcome: "error".into(),
+                reason: Some(error.to_string()),
+                critical_load: None,
+                critical_load_ratio: None,
+                wavenumber: None,
+                wavelength: None,
+                load_at_amplitude: vec![None; AMPLITUDE_LEVELS.len()],
+                dofs: None,
+                seconds: None,
+            }),
+        }
+    }
+    let first = rows.first().and_then(|r| r.critical_load);
+    for row in &mut rows {
+        row.critical_load_ratio = row.critical_load.zip(first).map(|(l, f)| l / f);
+    }
+    let comparison = Comparison {
+        rows,
+        closed_form_critical_load: closed_form_threshold(scene).map(|(l, _)| l),
+    };
+    write_comparison(scene, &comparison, &responses, directory)?;
+    Ok(comparison)
+}
+
+fn io_error(path: &Path) -> impl FnOnce(std::io::Error) -> Error + '_ {
+    move |error| Error::Io {
+        path: path.display().to_string(),
+        error,
+    }
+}
+
+fn cell(value: Option<f64>) -> String {
+    value.map(|v| format!("{v:.10e}")).unwrap_or_default()
+}
+
+/// `compare.csv`, `compare.json`, `compare.png|svg`.
+fn write_comparison(
+    scene: &Scene,
+    comparison: &Comparison,
+    responses: &[Response],
+    directory: &Path,
+) -> Result<(), Error> {
+    let mut csv =
+        String::from("model,outcome,critical_load,critical_load_ratio,wavenumber,wavelength");
+    for a in AMPLITUDE_LEVELS {
+        csv.push_str(&format!(",load_at_amplitude_{a}"));
+    }
+    csv.push_str(",dofs,seconds\n");
+    for row in &comparison.rows {
+        let mut line = vec![
+            row.model.clone(),
+            row.outcome.clone(),
+            cell(row.critical_load),
+            cell(row.critical_load_ratio),
+            cell(row.wavenumber),
+            cell(row.wavelength),
+        ];
+        line.extend(row.load_at_amplitude.iter().map(|v| cell(*v)));
+        line.push(row.dofs.map(|d| d.to_string()).unwrap_or_default());
+        line.push(cell(row.seconds));
+        csv.push_str(&line.join(","));
+        csv.push('\n');
+    }
+    let path = directory.join("compare.csv");
+    write_bytes_atomically(&path, csv.as_bytes()).map_err(io_error(&path))?;
+    let path = directory.join("compare.json");
+    let value = json!({
+        "scene": scene.echo_json(),
+        "load_unit": crate::threshold::load_unit(scene),
+        "amplitude_levels": AMPLITUDE_LEVELS,
+        "closed_form_critical_load": comparison.closed_form_critical_load,
+        "models": comparison.rows,
+    });
+    write_json(&path, &value).map_err(io_error(&path))?;
+    if !responses.is_empty() && scene.output.plots {
+        let stem = directory.join("compare");
+        plot_comparison(
+            &stem,
+            "Physical wrinkle amplitude, model by model",
+            responses,
+        )
+        .map_err(io_error(&stem))?;
+    }
+    Ok(())
+}
+
+/// The comparison as a text table for the terminal.
+pub fn comparison_table(comparison: &Comparison, unit: &str) -> String {
+    let mut text = format!(
+        "{:<20} {:>14} {:>8} {:>12} {:>14} {:>14} {:>14}  outcome\n",
+        "model",
+        format!("λ_c ({unit})"),
+        "ratio",
+        "wavelength",
+        "λ(a/h=0.5)",
+        "λ(a/h=1)",
+        "λ(a/h=2)"
+    );
+    let f = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.6e}"));
+    for row in &comparison.rows {
+        text.push_str(&format!(
+            "{:<20} {:>14} {:>8} {:>12} {:>14} {:>14} {:>14}  {}\n",
+            row.model,
+            f(row.critical_load),
+            row.critical_load_ratio
+                .map_or("—".into(), |r| format!("{r:.4}")),
+            row.wavelength.map_or("—".into(), |l| format!("{l:.3} mm")),
+            f(row.load_at_amplitude[0]),
+            f(row.load_at_amplitude[1]),
+            f(row.load_at_amplitude[2]),
+            match &row.reason {
+                Some(reason) => format!("{}: {reason}", row.outcome),
+                None => row.outcome.clone(),
+            }
+        ));
+    }
+    if let Some(l) = comparison.closed_form_critical_load {
+        text.push_str(&format!(
+            "closed form (42), envelope: λ_c = {l:.6e} {unit}\n"
+        ));
+    }
+    text
+}

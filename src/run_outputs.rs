@@ -1,0 +1,558 @@
+//! The files of a run (documented in `docs/outputs.md`): `path.csv`, `fields_*.vtu`,
+//! `surface_final.vtu`, the plots, `report.html`, `scene.toml`, and `summary.json` last with the
+//! list of every file written. Nothing here recomputes physics: every number comes from the
+//! [`Trace`] and the [`Threshold`]; the physical deflection is read through the field roles
+//! ([`Snapshot`]).
+
+use crate::Error;
+use crate::output::{
+    ClosedFormCurve, FieldData, GridField, LoadMarker, PointArray, Profile, ProfilePlot, Quantity,
+    Report, ReportFigure, Response, ResponsePoint, RunDirectory, RunSummary, Severity, Warning,
+    plot_profiles, plot_response, plot_wrinkle_map, write_fields_vtu, write_path_csv,
+    write_surface_vtu,
+};
+use crate::physics::{Layout, Snapshot};
+use crate::run::{RunOutcome, RunReport, Snap, Trace};
+use crate::scene::{LoadKind, Scene};
+use crate::threshold::{Threshold, closed_form_threshold, load_unit, threshold_json};
+use serde_json::json;
+use std::path::{Path, PathBuf};
+use wrinkle_runtime::ModelSpec;
+use wrinkle_runtime::fem::Mesh;
+
+/// What the writers need besides the trace.
+pub struct RunContext<'a> {
+    /// The scene.
+    pub scene: &'a Scene,
+    /// The model's specification.
+    pub spec: &'static ModelSpec,
+    /// The fields' meaning.
+    pub layout: &'a Layout,
+    /// The mesh.
+    pub mesh: &'a Mesh,
+    /// The threshold found on the same problem.
+    pub threshold: &'a Threshold,
+    /// Physical amplitude (mm) of the imperfection's response on the unloaded sheet.
+    pub imperfection: f64,
+    /// Free unknowns.
+    pub dofs: usize,
+    /// Seconds before the outputs.
+    pub seconds: f64,
+}
+
+impl RunContext<'_> {
+    fn snapshot<'b>(&'b self, values: &'b [f64]) -> Snapshot<'b> {
+        Snapshot {
+            mesh: self.mesh,
+            layout: self.layout,
+            values,
+            wavenumber: self.threshold.wavenumber.unwrap_or(0.0),
+            direction: self.scene.model.direction_degrees.to_radians(),
+        }
+    }
+
+    fn load_quantity(&self) -> Quantity {
+        match self.scene.load.kind {
+            LoadKind::Biaxial => Quantity::biaxial_load(),
+            LoadKind::Strip => Quantity::end_displacement(),
+        }
+    }
+
+    fn field_data(&self, load: f64) -> FieldData {
+        FieldData::load(load, load_unit(self.scene))
+            .with_text("model", self.spec.name)
+            .with_number("wavenumber", self.threshold.wavenumber.unwrap_or(0.0))
+            .with_number("critical_load", self.threshold.critical_load())
+    }
+
+    /// Samples per side of the surface grids: about 12 per wavelength, 50 to 1500.
+    fn samples(&self, length: f64) -> usize {
+        let wavelength = self.threshold.wavelength.unwrap_or(length);
+        (12.0 * length / wavelength).clamp(50.0, 1500.0) as usize
+    }
+}
+
+fn io_error(path: &Path) -> impl FnOnce(std::io::Error) -> Error + '_ {
+    move |error| Error::Io {
+        path: path.display().to_string(),
+        error,
+    }
+}
+
+/// Writes every output of a run into `directory` (the previous run's files are removed first).
+pub fn write_run(
+    context: &RunContext,
+    trace: &Trace,
+    directory: &Path,
+) -> Result<RunReport, Error> {
+    let mut run_directory = RunDirectory::prepare(directory).map_err(io_error(directory))?;
+    let dir = run_directory.root().to_path_buf();
+    let mut files = Vec::new();
+    let csv = dir.join("path.csv");
+    write_path_csv(&csv, &trace.points).map_err(io_error(&csv))?;
+    files.push(csv);
+    files.extend(write_fields(context, trace, &dir)?);
+    let figures = if context.scene.output.plots {
+        write_plots(context, trace, &dir)?
+    } else {
+        Vec::new()
+    };
+    files.extend(figures.iter().flat_map(|(f, _)| f.clone()));
+    let scene_path = dir.join("scene.toml");
+    crate::output::write_bytes_atomically(&scene_path, context.scene.to_toml_string().as_bytes())
+        .map_err(io_error(&scene_path))?;
+    files.push(scene_path);
+    let outcome = outcome(context, trace);
+    let summary_table = run_summary(context, trace, &outcome);
+    let report_path = dir.join("report.html");
+    run_directory
+        .record(files.iter().chain([&report_path]))
+        .map_err(io_error(&dir))?;
+    let mut report = Report::from_summary(&summary_table);
+    report.title = format!("{} on {}", context.spec.name, context.scene.source);
+    report.warnings = warnings(context, trace);
+    report.figures = figures
+        .iter()
+        .filter_map(|(f, caption)| f.first().map(|png| ReportFigure::png(png, caption.clone())))
+        .collect();
+    report.scene_toml = context.scene.to_toml_string();
+    report.files = run_directory.files().to_vec();
+    crate::output::write_report(&report_path, &report).map_err(io_error(&report_path))?;
+    files.push(report_path);
+    let mut summary = summary_json(context, trace, &outcome);
+    let summary_path = run_directory
+        .write_summary(summary.clone())
+        .map_err(io_error(&dir))?;
+    if let Some(object) = summary.as_object_mut() {
+        object.insert("files".into(), json!(run_directory.files()));
+    }
+    files.push(summary_path);
+    eprint!("{}", summary_table.to_text());
+    for warning in &report.warnings {
+        eprintln!("warning: {}: {}", warning.title, warning.detail);
+    }
+    let failure = match &outcome {
+        RunOutcome::Failed(reason) => Some(reason.clone()),
+        _ => None,
+    };
+    Ok(RunReport {
+        summary,
+        files,
+        failure,
+        outcome,
+    })
+}
+
+/// Exit status of the run (see [`RunOutcome`]).
+fn outcome(context: &RunContext, trace: &Trace) -> RunOutcome {
+    let stop = &trace.result.stop;
+    if stop.is_failure() {
+        return RunOutcome::Failed(stop.describe());
+    }
+    let reached = trace.points.last().is_some_and(|p| {
+        p.max_amplitude_over_h >= context.scene.solver.max_amplitude_over_thickness
+    });
+    if !reached {
+        let wrinkled = trace.result.bifurcation.is_some()
+            || trace
+                .points
+                .last()
+                .is_some_and(|p| p.lambda > context.threshold.critical_load());
+        let why = if wrinkled {
+            stop.describe()
+        } else {
+            format!(
+                "{} before the path left the fundamental branch",
+                stop.describe()
+            )
+        };
+        return RunOutcome::Incomplete(format!(
+            "{why}: the amplitude target max |w|/h = {} was not reached",
+            context.scene.solver.max_amplitude_over_thickness
+        ));
+    }
+    if let Some(warning) = context.threshold.warnings.first() {
+        return RunOutcome::Invalid(format!("{}: {}", warning.check, warning.message));
+    }
+    RunOutcome::Reached
+}
+
+/// `fields_final.vtu`, `fields_load_*.vtu`, `surface_final.vtu`.
+fn write_fields(context: &RunContext, trace: &Trace, dir: &Path) -> Result<Vec<PathBuf>, Error> {
+    let mut files = Vec::new();
+    let mut write_nodal = |name: String, snap: &Snap| -> Result<(), Error> {
+        let path = dir.join(name);
+        let extra = nodal_amplitude(context, &snap.values);
+        write_fields_vtu(
+            &path,
+            context.mesh,
+            context.spec.fields,
+            &snap.values,
+            &extra,
+            &context.field_data(snap.load),
+        )
+        .map_err(io_error(&path))?;
+        files.push(path);
+        Ok(())
+    };
+    write_nodal("fields_final.vtu".into(), &trace.last)?;
+    for snap in &trace.requested {
+        write_nodal(format!("fields_load_{:.6}.vtu", snap.load), snap)?;
+    }
+    let bounds = context.mesh.bounds();
+    let snapshot = context.snapshot(&trace.last.values);
+    let (sx, sy) = (
+        context.samples(bounds[1] - bounds[0]),
+        context.samples(bounds[3] - bounds[2]),
+    );
+    let grid = GridField::sample(Quantity::deflection(), bounds, sx + 1, sy + 1, |x, y| {
+        snapshot.deflection([x, y])
+    });
+    let path = dir.join("surface_final.vtu");
+    write_surface_vtu(&path, &grid, 1.0, &[], &context.field_data(trace.last.load))
+        .map_err(io_error(&path))?;
+    files.push(path);
+    Ok(files)
+}
+
+/// Nodal physical amplitude of envelope models (`amplitude`, mm) and, for a complex envelope,
+/// the local wavenumber (`local_wavenumber`, 1/mm).
+fn nodal_amplitude(context: &RunContext, values: &[f64]) -> Vec<PointArray> {
+    let snapshot = context.snapshot(values);
+    let nodes = &context.mesh.nodes;
+    if !context.layout.is_envelope() {
+        return Vec::new();
+    }
+    let mut arrays = vec![PointArray::scalar(
+        "amplitude",
+        nodes
+            .iter()
+            .map(|p| snapshot.envelope_amplitude([p[0], p[1]]).unwrap_or(0.0))
+            .collect(),
+    )];
+    if matches!(
+        context.layout.kind,
+        crate::physics::DeflectionKind::ComplexEnvelope { .. }
+    ) {
+        let step = 1e-3 * (context.scene.geometry.length_x + context.scene.geometry.length_y);
+        arrays.push(PointArray::scalar(
+            "local_wavenumber",
+            nodes
+                .iter()
+                .map(|p| {
+                    snapshot
+                        .local_wavenumber([p[0], p[1]], step)
+                        .unwrap_or(snapshot.wavenumber)
+                })
+                .collect(),
+        ));
+    }
+    arrays
+}
+
+/// `response`, `profiles_x`, `profiles_y`, `wrinkles` (PNG and SVG), with captions.
+fn write_plots(
+    context: &RunContext,
+    trace: &Trace,
+    dir: &Path,
+) -> Result<Vec<(Vec<PathBuf>, String)>, Error> {
+    let mut out = Vec::new();
+    let stem = dir.join("response");
+    let plot = plot_response(
+        &stem,
+        &format!("{}: physical wrinkle amplitude", context.spec.name),
+        &response(context, trace),
+    )
+    .map_err(io_error(&stem))?;
+    out.push((
+        plot.files,
+        "Load against physical wrinkle amplitude".to_string(),
+    ));
+    out.extend(write_profiles(context, trace, dir)?);
+    let bounds = context.mesh.bounds();
+    let snapshot = context.snapshot(&trace.last.values);
+    let (mx, my) = (
+        context.samples(bounds[1] - bounds[0]).min(900),
+        context.samples(bounds[3] - bounds[2]).min(450),
+    );
+    let field = GridField::sample(Quantity::deflection(), bounds, mx + 1, my + 1, |x, y| {
+        snapshot.deflection([x, y])
+    });
+    let h = context.scene.material.thickness;
+    let stem = dir.join("wrinkles");
+    let plot = plot_wrinkle_map(
+        &stem,
+        &format!(
+            "{}: physical deflection at λ = {}",
+            context.spec.name,
+            context.load_quantity().format_value(trace.last.load)
+        ),
+        &crate::output::WrinkleMap::new(field, 1e-2 * h, "10⁻² h"),
+    )
+    .map_err(io_error(&stem))?;
+    out.push((
+        plot.files,
+        "Physical deflection at the last point".to_string(),
+    ));
+    Ok(out)
+}
+
+/// The load–amplitude response with the closed form and the markers.
+fn response(context: &RunContext, trace: &Trace) -> Response {
+    let load = context.load_quantity();
+    let critical = context.threshold.critical_load();
+    let points = trace
+        .points
+        .iter()
+        .map(|p| ResponsePoint {
+            load: p.lambda,
+            max_amplitude_over_h: p.max_amplitude_over_h,
+            centre_amplitude_over_h: Some(p.centre_amplitude_over_h),
+            step_end: !p.interior,
+        })
+        .collect();
+    let mut response = Response::new(context.spec.name, load.clone(), critical, points)
+        .with_marker(LoadMarker::linear_buckling(critical, &load));
+    if closed_form_threshold(context.scene).is_some() {
+        let rectangle = context.scene.clamped_rectangle();
+        let nu = context.scene.material.poisson_ratio;
+        let last = trace.points.last().map_or(critical, |p| p.lambda);
+        let top = (last / critical).max(1.001);
+        let curve = (0..=200)
+            .map(|k| {
+                let ratio = 1.0 + (top - 1.0) * k as f64 / 200.0;
+                let a = crate::closed_form::amplitude_from_load_ratio(
+                    rectangle.aspect_ratio(),
+                    nu,
+                    ratio,
+                );
+                (ratio, 2.0 * a)
+            })
+            .collect();
+        response = response.with_closed_form(ClosedFormCurve {
+            label: "one-mode closed form (62), physical 2a/h".into(),
+            points: curve,
+        });
+    }
+    if let Some((at, report)) = &trace.loss_of_ellipticity {
+        response = response.with_marker(LoadMarker::loss_of_ellipticity(
+            *at,
+            Some(report.violated_fraction),
+            &load,
+        ));
+    }
+    response
+}
+
+/// Profiles along X and Y through the largest wrinkle of the last state: the physical
+/// amplitude $`2|w_1|/h`$ of envelope models, the deflection $`w/h`$ of a plate.
+fn write_profiles(
+    context: &RunContext,
+    trace: &Trace,
+    dir: &Path,
+) -> Result<Vec<(Vec<PathBuf>, String)>, Error> {
+    let bounds = context.mesh.bounds();
+    let h = context.scene.material.thickness;
+    let last = context.snapshot(&trace.last.values);
+    let grid = GridField::sample(Quantity::deflection(), bounds, 201, 201, |x, y| {
+        last.envelope_amplitude([x, y])
+            .unwrap_or_else(|| last.deflection([x, y]).abs())
+    });
+    let Some((i, j, _)) = grid.max_abs_point() else {
+        return Ok(Vec::new());
+    };
+    let peak = grid.point(i, j);
+    let value = |snapshot: &Snapshot, p: [f64; 2]| match snapshot.envelope_amplitude(p) {
+        Some(a) => a / h,
+        None => snapshot.deflection(p) / h,
+    };
+    let ordinate = if context.layout.is_envelope() {
+        Quantity::new("physical amplitude", "2|w_env| / h", "")
+    } else {
+        Quantity::new("deflection", "w / h", "")
+    };
+    let load = context.load_quantity();
+    let mut out = Vec::new();
+    for (name, axis) in [("profiles_x", 0usize), ("profiles_y", 1usize)] {
+        let (low, high) = (bounds[2 * axis], bounds[2 * axis + 1]);
+        let samples = (2 * context.samples(high - low)).max(400);
+        let profiles: Vec<Profile> = trace
+            .profiles
+            .iter()
+            .map(|snap| {
+                let snapshot = context.snapshot(&snap.values);
+                Profile {
+                    label: format!("λ = {}", load.format_value(snap.load)),
+                    points: (0..=samples)
+                        .map(|k| {
+                            let s = low + (high - low) * k as f64 / samples as f64;
+                            let p = if axis == 0 {
+                                [s, peak[1]]
+                            } else {
+                                [peak[0], s]
+                            };
+                            (s, value(&snapshot, p))
+                        })
+                        .collect(),
+                }
+            })
+            .collect();
+        if profiles.is_empty() {
+            continue;
+        }
+        let (coordinate, location) = if axis == 0 {
+            (
+                "X",
+                format!(
+                    "along X at Y = {:.4} mm (through the largest wrinkle)",
+                    peak[1]
+                ),
+            )
+        } else {
+            (
+                "Y",
+                format!(
+                    "along Y at X = {:.4} mm (through the largest wrinkle)",
+                    peak[0]
+                ),
+            )
+        };
+        let stem = dir.join(name);
+        let plot = plot_profiles(
+            &stem,
+            &format!("{}: {}", context.spec.name, ordinate.name()),
+            &ProfilePlot {
+                abscissa: Quantity::coordinate(coordinate),
+                ordinate: ordinate.clone(),
+                location: location.clone(),
+                profiles,
+            },
+        )
+        .map_err(io_error(&stem))?;
+        out.push((plot.files, format!("Profiles {location}")));
+    }
+    Ok(out)
+}
+
+/// Warnings a researcher must see: validity checks, loss of ellipticity, solver notes.
+fn warnings(context: &RunContext, trace: &Trace) -> Vec<Warning> {
+    let mut warnings: Vec<Warning> = context
+        .threshold
+        .warnings
+        .iter()
+        .map(|w| Warning::new(Severity::Warning, w.check, w.message.clone()))
+        .collect();
+    if let Some((load, report)) = &trace.loss_of_ellipticity {
+        warnings.push(Warning::new(
+            Severity::Warning,
+            "loss of ellipticity",
+            format!(
+                "from λ = {} on {:.2} % of the area (worst at ({:.4}, {:.4}) mm, field `{}`): beyond it the model's solutions depend on the mesh",
+                context.load_quantity().format_value(*load),
+                100.0 * report.violated_fraction,
+                report.location[0],
+                report.location[1],
+                report.field
+            ),
+        ));
+    }
+    for note in &context.threshold.notes {
+        warnings.push(Warning::new(Severity::Note, "note", note.clone()));
+    }
+    for warning in &trace.result.warnings {
+        warnings.push(Warning::new(Severity::Warning, "solver", warning.clone()));
+    }
+    warnings
+}
+
+/// The terminal and report table.
+fn run_summary(context: &RunContext, trace: &Trace, outcome: &RunOutcome) -> RunSummary {
+    let last = trace.points.last();
+    let stats = &trace.result.statistics;
+    RunSummary {
+        model: context.spec.name.to_string(),
+        method: context.scene.solver.method.as_str().to_uppercase(),
+        dofs: context.dofs,
+        wavenumber: context.threshold.wavenumber,
+        load: context.load_quantity(),
+        critical_load: Some(context.threshold.critical_load()),
+        closed_form_critical_load: closed_form_threshold(context.scene).map(|(l, _)| l),
+        closed_form_source: "eq. (42), envelope".into(),
+        final_load: last.map(|p| p.lambda),
+        final_amplitude_over_h: last.map(|p| p.max_amplitude_over_h),
+        target_amplitude_over_h: Some(context.scene.solver.max_amplitude_over_thickness),
+        thickness: Some(context.scene.material.thickness),
+        steps: stats.steps,
+        factorizations: stats.factorizations,
+        seconds: context.seconds,
+        stop: match outcome {
+            RunOutcome::Reached => trace.result.stop.describe(),
+            RunOutcome::Failed(s) | RunOutcome::Incomplete(s) | RunOutcome::Invalid(s) => s.clone(),
+        },
+        reached_target: *outcome == RunOutcome::Reached,
+    }
+}
+
+/// `summary.json` (keys documented in `docs/outputs.md`).
+fn summary_json(context: &RunContext, trace: &Trace, outcome: &RunOutcome) -> serde_json::Value {
+    let stats = &trace.result.statistics;
+    let critical = context.threshold.critical_load();
+    json!({
+        "model": context.spec.name,
+        "method": context.scene.solver.method.as_str(),
+        "dofs": context.dofs,
+        "wavenumber": context.threshold.wavenumber,
+        "wavelength": context.threshold.wavelength,
+        "load_kind": context.scene.load.kind.as_str(),
+        "load_unit": load_unit(context.scene),
+        "linear_buckling_load": critical,
+        "closed_form_critical_load": closed_form_threshold(context.scene).map(|(l, _)| l),
+        "threshold": threshold_json(context.scene, context.threshold),
+        "detected_bifurcation": trace.result.bifurcation.map(|(load, step)| json!({"load": load, "step": step,
+            "relative_difference_to_linear_buckling": (load - critical) / critical})),
+        "loss_of_ellipticity": trace.loss_of_ellipticity.as_ref().map(|(load, r)| json!({
+            "load": load, "location": r.location, "direction_rad": r.direction, "field": r.field,
+            "margin": r.worst_margin, "area_fraction": r.violated_fraction})),
+        "imperfection_amplitude": context.imperfection,
+        "stop": trace.result.stop.describe(),
+        "outcome": match outcome {
+            RunOutcome::Reached => "reached",
+            RunOutcome::Failed(_) => "failed",
+            RunOutcome::Incomplete(_) => "incomplete",
+            RunOutcome::Invalid(_) => "invalid",
+        },
+        "exit_code": outcome.exit_code(),
+        "failed": matches!(outcome, RunOutcome::Failed(_)),
+        "steps": stats.steps,
+        "statistics": {
+            "factorizations": stats.factorizations,
+            "tangent_assemblies": stats.tangent_assemblies,
+            "residual_assemblies": stats.residual_assemblies,
+            "series_assemblies": stats.series_assemblies,
+            "corrections": stats.corrections,
+            "rejected_steps": stats.rejected_steps,
+        },
+        "timings": {
+            "threshold": context.threshold.seconds,
+            "assembly": stats.assembly_seconds,
+            "factorization": stats.factorization_seconds,
+            "series": stats.series_seconds,
+            "bifurcation_prediction": stats.bifurcation_seconds,
+            "path": stats.total_seconds,
+            "total": context.seconds,
+        },
+        "solver_warnings": trace.result.warnings,
+        "anm_steps": trace.anm_steps.iter().map(|s| json!({
+            "step": s.step, "load_start": s.load_range.0, "load_end": s.load_range.1, "step_length": s.step_length,
+            "series_step_length": s.series_step_length, "pade_step_length": s.pade_step_length,
+            "end_residual": s.end_residual, "correction_iterations": s.correction_iterations,
+            "geometric_radius": s.geometric_radius, "predicted_bifurcation": s.predicted_bifurcation,
+            "negative_pivots": s.negative_pivots,
+        })).collect::<Vec<_>>(),
+        "vtu": trace.requested.iter().map(|s| json!({"load": s.load, "file": format!("fields_load_{:.6}.vtu", s.load)}))
+            .chain([json!({"load": trace.last.load, "file": "fields_final.vtu"}), json!({"load": trace.last.load, "file": "surface_final.vtu"})])
+            .collect::<Vec<_>>(),
+        "path": trace.points,
+        "scene": context.scene.echo_json(),
+    })
+}

@@ -1,0 +1,459 @@
+//! The wrinkling threshold of a scene: linear buckling of the problem, minimised over the
+//! wavenumber for envelope models (`model.wavenumber = "auto"`), with the validity checks that
+//! say whether the number can be trusted.
+//!
+//! **Wavenumber range.** The search scans $`\lambda_c(Q)`$ over the whole range where an
+//! envelope model is meaningful — wavelengths $`\ell = 2\pi/Q`$ between
+//! [`MIN_WAVELENGTH_OVER_THICKNESS`]$`\,h`$ and the shorter side of the domain — then refines
+//! the best bracket (`wrinkle_runtime::solve::wavenumber`). A model whose $`\lambda_c(Q)`$ keeps
+//! falling to the end of the range (the pure membrane, threshold $`DQ^2`$) has no wavelength
+//! selection of its own: its $`Q`$ is then taken from the reference envelope's minimisation on
+//! the same scene, and a note says so. A complex envelope (a model with a phase) takes the
+//! reference envelope's $`Q`$ as its carrier too: its phase moves the local wavenumber freely
+//! and its bending is a second-order expansion about $`Q`$, so its own $`\lambda_c(Q)`$ is
+//! meaningless away from the reference optimum (measured: a spurious minimum at
+//! $`Q = 0.099`$/mm, $`\lambda_c`$ half the plate's, on example 1).
+//!
+//! **Validity checks** (warnings in the summary, exit code 4 unless the scene accepts them):
+//! * scale separation of envelope models: $`\ell \le L_\min /`$ [`MIN_WAVES_PER_DOMAIN`] and
+//!   $`\ell \ge`$ [`MIN_WAVELENGTH_OVER_THICKNESS`]$`\,h`$;
+//! * strong ellipticity at the threshold (area fraction where the Legendre–Hadamard condition
+//!   fails at most [`MAX_NON_ELLIPTIC_FRACTION`]);
+//! * mode resolution of the plate: at least [`MIN_ELEMENTS_PER_WAVELENGTH`] elements per
+//!   wavelength along the wave direction.
+
+use crate::Error;
+use crate::output::{ProgressSink, SearchProgress};
+use crate::physics::{Layout, Snapshot, wavelength_along_line};
+use crate::scene::{LoadKind, Scene, Wavenumber};
+use crate::setup::{build_problem, configure_model, layout_of, unknown_model};
+use serde_json::json;
+use std::f64::consts::PI;
+use wrinkle_models::{ModelVisitor, with_model};
+use wrinkle_runtime::EnergyModel;
+use wrinkle_runtime::linear::factor::SparseFactorization;
+use wrinkle_runtime::problem::Problem;
+use wrinkle_runtime::solve::buckling::{LinearBuckling, LinearBucklingOptions, linear_buckling};
+use wrinkle_runtime::solve::ellipticity::EllipticityReport;
+use wrinkle_runtime::solve::wavenumber::{
+    WavenumberEvaluation, WavenumberSearchOptions, ellipticity_at_critical_load,
+    minimise_critical_load, set_model_parameter,
+};
+
+/// Shortest wavelength an envelope model accepts, in thicknesses.
+pub const MIN_WAVELENGTH_OVER_THICKNESS: f64 = 20.0;
+/// Fewest wavelengths across the shorter side of the domain for an envelope model's scale
+/// separation.
+pub const MIN_WAVES_PER_DOMAIN: f64 = 4.0;
+/// Area fraction where strong ellipticity may fail at the threshold (stress singularities at
+/// clamped–free corners) before the threshold is flagged.
+pub const MAX_NON_ELLIPTIC_FRACTION: f64 = 1e-2;
+/// Fewest Q8 elements per wavelength for a resolved plate mode.
+pub const MIN_ELEMENTS_PER_WAVELENGTH: f64 = 8.0;
+
+/// A validity check that failed.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct ValidityWarning {
+    /// Short identifier: `scale_separation`, `ellipticity`, `mode_resolution`.
+    pub check: &'static str,
+    /// What was found and what it means.
+    pub message: String,
+}
+
+/// The threshold of a scene and how it was found.
+#[derive(Clone, Debug)]
+pub struct Threshold {
+    /// Registry name of the model.
+    pub model: &'static str,
+    /// Linear buckling at the threshold (critical loads, modes, pre-buckling state and rate).
+    pub buckling: LinearBuckling,
+    /// Strong ellipticity at the threshold.
+    pub ellipticity: EllipticityReport,
+    /// Wavenumber $`Q`$ (1/mm) of an envelope model.
+    pub wavenumber: Option<f64>,
+    /// Wavelength (mm): $`2\pi/Q`$, or read from the plate's mode.
+    pub wavelength: Option<f64>,
+    /// `"fixed"`, `"auto"` (minimised), `"auto (reference-envelope)"` or `"mode"` (plate).
+    pub wavenumber_source: String,
+    /// Linear buckling analyses done.
+    pub evaluations: usize,
+    /// The wavenumber search, when there was one.
+    pub search: Vec<WavenumberEvaluation>,
+    /// Notes for the user (a parameter not used, where the wavenumber came from).
+    pub notes: Vec<String>,
+    /// Failed validity checks.
+    pub warnings: Vec<ValidityWarning>,
+    /// Free unknowns.
+    pub dofs: usize,
+    /// Seconds spent.
+    pub seconds: f64,
+}
+
+impl Threshold {
+    /// Critical load $`\lambda_c`$.
+    pub fn critical_load(&self) -> f64 {
+        self.buckling.critical_loads[0]
+    }
+}
+
+/// Wavenumber range $`[2\pi/L_\min, 2\pi/(20h)]`$ (1/mm) the search scans.
+pub fn wavenumber_range(scene: &Scene) -> (f64, f64) {
+    let shortest = scene.geometry.length_x.min(scene.geometry.length_y);
+    let thickness = scene.material.thickness;
+    let low = 2.0 * PI / shortest;
+    let high = 2.0 * PI / (MIN_WAVELENGTH_OVER_THICKNESS * thickness);
+    (low, high.max(4.0 * low))
+}
+
+/// Finds the threshold of `problem` (built from `scene`, parameters set). For an envelope
+/// model with `wavenumber = "auto"` the model in `problem` is left at the minimiser.
+pub fn find_threshold<M: EnergyModel>(
+    scene: &Scene,
+    problem: &mut Problem<M>,
+    factor: &mut SparseFactorization,
+    quiet: bool,
+) -> Result<Threshold, Error> {
+    let start = std::time::Instant::now();
+    let layout = layout_of::<M>(scene)?;
+    let has_wavenumber = M::SPEC.parameter_index("wavenumber").is_some();
+    let mut notes = Vec::new();
+    if !has_wavenumber && matches!(scene.model.wavenumber, Wavenumber::Fixed(_)) {
+        notes.push(format!(
+            "model `{}` has no wavenumber: `model.wavenumber` is ignored (its wrinkles are resolved by the mesh)",
+            M::SPEC.name
+        ));
+    }
+    let options = LinearBucklingOptions::default();
+    let (buckling, ellipticity, q, source, search) = match (scene.model.wavenumber, has_wavenumber)
+    {
+        (Wavenumber::Auto, true) if has_phase(M::SPEC) => {
+            let q = reference_wavenumber(scene, quiet)?;
+            notes.push(format!(
+                "model `{}` has a phase: its local wavenumber Q + ∂arg(w1) is free, and its bending (a second-order expansion about Q) is only valid near the carrier Q, so λ_c(Q) has no meaningful minimum of its own; Q = {q:.6e} 1/mm is the reference-envelope minimiser on the same scene",
+                M::SPEC.name
+            ));
+            set_model_parameter(problem, "wavenumber", q)
+                .map_err(|e| Error::Solver(e.to_string()))?;
+            let buckling = linear_buckling(problem, factor, &options)
+                .map_err(|e| Error::Solver(format!("linear buckling: {e}")))?;
+            let ellipticity = ellipticity_at_critical_load(problem, &buckling, 0.0);
+            (
+                buckling,
+                ellipticity,
+                Some(q),
+                "auto (reference-envelope)".into(),
+                Vec::new(),
+            )
+        }
+        (Wavenumber::Auto, true) => {
+            let (search, source) = search_wavenumber(scene, problem, factor, quiet, &mut notes)?;
+            (search.0, search.1, Some(search.2), source, search.3)
+        }
+        _ => {
+            let buckling = linear_buckling(problem, factor, &options)
+                .map_err(|e| Error::Solver(format!("linear buckling: {e}")))?;
+            let ellipticity = ellipticity_at_critical_load(problem, &buckling, 0.0);
+            let q = match scene.model.wavenumber {
+                Wavenumber::Fixed(q) if has_wavenumber => Some(q),
+                _ => None,
+            };
+            let source = if q.is_some() { "fixed" } else { "mode" };
+            (buckling, ellipticity, q, source.to_string(), Vec::new())
+        }
+    };
+    let wavelength = match q {
+        Some(q) => Some(2.0 * PI / q),
+        None => mode_wavelength(scene, problem, &layout, &buckling),
+    };
+    let mut threshold = Threshold {
+        model: M::SPEC.name,
+        evaluations: search.len().max(1),
+        buckling,
+        ellipticity,
+        wavenumber: q,
+        wavelength,
+        wavenumber_source: source,
+        search,
+        notes,
+        warnings: Vec::new(),
+        dofs: problem.free_count(),
+        seconds: 0.0,
+    };
+    threshold.warnings = validity_warnings(scene, &layout, &threshold);
+    threshold.seconds = start.elapsed().as_secs_f64();
+    Ok(threshold)
+}
+
+/// Whether the model's envelope has a phase (a field of role `envelope_imaginary`).
+fn has_phase(spec: &wrinkle_runtime::ModelSpec) -> bool {
+    spec.field_with_role(wrinkle_runtime::FieldRole::EnvelopeImaginary)
+        .is_some()
+}
+
+type SearchOutcome = (
+    LinearBuckling,
+    EllipticityReport,
+    f64,
+    Vec<WavenumberEvaluation>,
+);
+
+/// The global wavenumber search, with the reference envelope's $`Q`$ for a model that has no
+/// wavelength selection of its own.
+fn search_wavenumber<M: EnergyModel>(
+    scene: &Scene,
+    problem: &mut Problem<M>,
+    factor: &mut SparseFactorization,
+    quiet: bool,
+    notes: &mut Vec<String>,
+) -> Result<(SearchOutcome, String), Error> {
+    let range = wavenumber_range(scene);
+    let options = WavenumberSearchOptions {
+        range,
+        ..WavenumberSearchOptions::default()
+    };
+    let progress = SearchProgress::new(
+        &format!("{}: wavenumber search", M::SPEC.name),
+        ProgressSink::standard_error(quiet),
+    );
+    let mut count = 0;
+    let mut observer = |e: &WavenumberEvaluation| {
+        count += 1;
+        let detail = match (e.critical_load, &e.rejected) {
+            (Some(load), _) => format!("Q = {:.5e}/mm, λ_c = {load:.6e}", e.parameter),
+            (None, Some(reason)) => format!(
+                "Q = {:.5e}/mm rejected: {}",
+                e.parameter,
+                reason.split(':').next().unwrap_or(reason)
+            ),
+            _ => format!("Q = {:.5e}/mm", e.parameter),
+        };
+        progress.evaluation(count, &detail);
+    };
+    let search = minimise_critical_load(problem, factor, &options, &mut observer).map_err(|e| {
+        Error::Solver(format!(
+            "wavenumber search of `{}` over Q in [{:.3e}, {:.3e}] 1/mm (wavelengths from {:.3e} to {:.3e} mm): {e}. \
+             Hint: check that the load compresses the sheet and that the thickness and tension are physical",
+            M::SPEC.name, range.0, range.1, 2.0 * PI / range.1, 2.0 * PI / range.0
+        ))
+    })?;
+    progress.finish(&format!(
+        "Q = {:.6e}/mm, λ_c = {:.6e}",
+        search.parameter, search.buckling.critical_loads[0]
+    ));
+    let at_lower_end = search.parameter <= range.0 * 1.05;
+    if !at_lower_end || M::SPEC.name == "reference-envelope" {
+        let outcome = (
+            search.buckling,
+            search.ellipticity,
+            search.parameter,
+            search.evaluations,
+        );
+        return Ok((outcome, "auto".into()));
+    }
+    // No wavelength selection: λ_c(Q) falls to the end of the range.
+    let q = reference_wavenumber(scene, quiet)?;
+    notes.push(format!(
+        "model `{}` has no wavelength selection of its own (its critical load falls with Q down to the end of the range, {:.3e} 1/mm); Q = {q:.6e} 1/mm is taken from the reference-envelope minimisation on the same scene",
+        M::SPEC.name, range.0
+    ));
+    set_model_parameter(problem, "wavenumber", q).map_err(|e| Error::Solver(e.to_string()))?;
+    let buckling = linear_buckling(problem, factor, &options.buckling)
+        .map_err(|e| Error::Solver(format!("linear buckling: {e}")))?;
+    let ellipticity = ellipticity_at_critical_load(problem, &buckling, 0.0);
+    let outcome = (buckling, ellipticity, q, search.evaluations);
+    Ok((outcome, "auto (reference-envelope)".into()))
+}
+
+struct ReferenceQ<'a> {
+    scene: &'a Scene,
+    quiet: bool,
+}
+
+impl ModelVisitor for ReferenceQ<'_> {
+    type Output = Result<f64, Error>;
+    fn visit<M: EnergyModel>(self, mut model: M) -> Self::Output {
+        configure_model(self.scene, &mut model, 1.0)?;
+        let mut problem = build_problem(self.scene, model)?;
+        let mut factor = analyse(&problem)?;
+        let threshold = find_threshold(self.scene, &mut problem, &mut factor, self.quiet)?;
+        threshold
+            .wavenumber
+            .ok_or_else(|| Error::Solver("reference envelope without a wavenumber".into()))
+    }
+}
+
+/// $`Q`$ of the reference envelope's minimisation on `scene`.
+fn reference_wavenumber(scene: &Scene, quiet: bool) -> Result<f64, Error> {
+    let mut reference = scene.clone();
+    reference.model.name = "reference-envelope".into();
+    reference.model.parameters.clear();
+    with_model(
+        "reference-envelope",
+        ReferenceQ {
+            scene: &reference,
+            quiet,
+        },
+    )
+    .unwrap_or_else(|| Err(unknown_model(&reference)))
+}
+
+/// Symbolic analysis of the tangent's pattern.
+pub fn analyse<M: EnergyModel>(problem: &Problem<M>) -> Result<SparseFactorization, Error> {
+    SparseFactorization::analyze(problem.assembler.pattern())
+        .map_err(|e| Error::Solver(format!("symbolic analysis of the tangent: {e}")))
+}
+
+/// The plate's wavelength, read from its first mode along the line through the mode's largest
+/// deflection in the wave direction.
+fn mode_wavelength<M: EnergyModel>(
+    scene: &Scene,
+    problem: &Problem<M>,
+    layout: &Layout,
+    buckling: &LinearBuckling,
+) -> Option<f64> {
+    let mode = buckling.modes.first()?;
+    let mesh = problem.assembler.mesh();
+    let values = problem.dofs().expand_increment(mode, 0.0);
+    let nf = layout.field_count;
+    let peak = (0..mesh.nodes.len())
+        .max_by(|&a, &b| {
+            values[a * nf + layout.primary]
+                .abs()
+                .total_cmp(&values[b * nf + layout.primary].abs())
+        })
+        .map(|n| mesh.nodes[n])?;
+    let snapshot = Snapshot {
+        mesh,
+        layout,
+        values: &values,
+        wavenumber: 0.0,
+        direction: scene.model.direction_degrees.to_radians(),
+    };
+    let length = 2.0 * scene.geometry.length_x.hypot(scene.geometry.length_y);
+    wavelength_along_line(&snapshot, [peak[0], peak[1]], length)
+}
+
+/// The validity checks of the module documentation.
+fn validity_warnings(
+    scene: &Scene,
+    layout: &Layout,
+    threshold: &Threshold,
+) -> Vec<ValidityWarning> {
+    let mut warnings = Vec::new();
+    let h = scene.material.thickness;
+    let shortest = scene.geometry.length_x.min(scene.geometry.length_y);
+    if let (Some(l), true) = (threshold.wavelength, layout.is_envelope()) {
+        if l > shortest / MIN_WAVES_PER_DOMAIN {
+            warnings.push(ValidityWarning {
+                check: "scale_separation",
+                message: format!(
+                    "wavelength {l:.4e} mm is not small against the domain (shorter side {shortest} mm, at most 1/{MIN_WAVES_PER_DOMAIN} of it): the envelope model's slowly-varying assumption does not hold"
+                ),
+            });
+        }
+        if l < MIN_WAVELENGTH_OVER_THICKNESS * h {
+            warnings.push(ValidityWarning {
+                check: "scale_separation",
+                message: format!(
+                    "wavelength {l:.4e} mm is below {MIN_WAVELENGTH_OVER_THICKNESS} thicknesses (h = {h} mm): outside thin-plate theory"
+                ),
+            });
+        }
+    }
+    let e = &threshold.ellipticity;
+    if e.violated_fraction > MAX_NON_ELLIPTIC_FRACTION {
+        warnings.push(ValidityWarning {
+            check: "ellipticity",
+            message: format!(
+                "not strongly elliptic at the threshold over {:.1} % of the area (worst at ({:.4}, {:.4}) mm, field `{}`): the critical load is a mesh-scale mode, not a threshold of the model",
+                100.0 * e.violated_fraction, e.location[0], e.location[1], e.field
+            ),
+        });
+    }
+    if let (Some(l), false) = (threshold.wavelength, layout.is_envelope()) {
+        let element = scene.geometry.length_x / scene.mesh.elements_x as f64;
+        let per_wavelength = l / element;
+        if per_wavelength < MIN_ELEMENTS_PER_WAVELENGTH {
+            warnings.push(ValidityWarning {
+                check: "mode_resolution",
+                message: format!(
+                    "{per_wavelength:.1} elements per wavelength ({l:.4e} mm) along X: the plate's mode is not resolved (at least {MIN_ELEMENTS_PER_WAVELENGTH}; refine mesh.nx)"
+                ),
+            });
+        }
+    }
+    warnings
+}
+
+/// Summary of a threshold as JSON (keys documented in `docs/outputs.md`).
+pub fn threshold_json(scene: &Scene, threshold: &Threshold) -> serde_json::Value {
+    let critical = threshold.critical_load();
+    let closed_form = closed_form_threshold(scene);
+    json!({
+        "model": threshold.model,
+        "critical_load": critical,
+        "load_kind": scene.load.kind.as_str(),
+        "load_unit": load_unit(scene),
+        "n_x": (scene.load.kind == LoadKind::Biaxial).then_some(-critical),
+        "wavenumber": threshold.wavenumber,
+        "wavelength": threshold.wavelength,
+        "wavenumber_mode": threshold.wavenumber_source,
+        "dofs": threshold.dofs,
+        "elements": scene.mesh.elements_x * scene.mesh.elements_y,
+        "buckling_evaluations": threshold.evaluations,
+        "eigen_residual": threshold.buckling.residuals[0],
+        "eigen_iterations": threshold.buckling.eigen_iterations,
+        "closed_form_critical_load": closed_form.map(|(l, _)| l),
+        "closed_form_wavenumber": closed_form.map(|(_, q)| q),
+        "closed_form_relative_difference": closed_form.map(|(l, _)| (critical - l) / l),
+        "elliptic_at_threshold": threshold.ellipticity.elliptic,
+        "ellipticity_margin": threshold.ellipticity.worst_margin,
+        "ellipticity_worst_location": threshold.ellipticity.location,
+        "ellipticity_worst_field": threshold.ellipticity.field,
+        "ellipticity_violated_area_fraction": threshold.ellipticity.violated_fraction,
+        "notes": threshold.notes,
+        "warnings": threshold.warnings,
+        "seconds": threshold.seconds,
+    })
+}
+
+/// Unit of the load $`\lambda`$: N/mm (biaxial) or mm (strip).
+pub fn load_unit(scene: &Scene) -> &'static str {
+    match scene.load.kind {
+        LoadKind::Biaxial => "N/mm",
+        LoadKind::Strip => "mm",
+    }
+}
+
+/// The closed-form threshold (THEORY.md §8, eq. 42 minimised) and its wavenumber when the scene
+/// is a clamped rectangle under biaxial load with waves along X.
+pub fn closed_form_threshold(scene: &Scene) -> Option<(f64, f64)> {
+    (scene.load.kind == LoadKind::Biaxial && scene.model.direction_degrees == 0.0)
+        .then(|| scene.clamped_rectangle().critical_point())
+        .flatten()
+}
+
+struct ThresholdVisitor<'a> {
+    scene: &'a Scene,
+    quiet: bool,
+}
+
+impl ModelVisitor for ThresholdVisitor<'_> {
+    type Output = Result<Threshold, Error>;
+    fn visit<M: EnergyModel>(self, mut model: M) -> Self::Output {
+        let q = match self.scene.model.wavenumber {
+            Wavenumber::Fixed(q) => q,
+            Wavenumber::Auto => 1.0,
+        };
+        configure_model(self.scene, &mut model, q)?;
+        let mut problem = build_problem(self.scene, model)?;
+        let mut factor = analyse(&problem)?;
+        find_threshold(self.scene, &mut problem, &mut factor, self.quiet)
+    }
+}
+
+/// Linear buckling analysis of a scene (`wrinkle buckle`).
+pub fn buckle(scene: &Scene, quiet: bool) -> Result<Threshold, Error> {
+    with_model(&scene.model.name, ThresholdVisitor { scene, quiet })
+        .unwrap_or_else(|| Err(unknown_model(scene)))
+}
