@@ -39,8 +39,8 @@
 //! **Bending of the envelope** (THEORY.md §6, re-derived from (25)–(26): keep up to two slow
 //! derivatives, integrate by parts with $`w_1 = 0`$ on the boundary, the Gaussian-curvature term
 //! being a null Lagrangian):
-//! $$`D\left[Q^4|w_1|^2 + 6Q^2|\partial_e w_1|^2 + 2Q^2|\partial_{e^\perp} w_1|^2
-//! + 4Q^3\,\mathrm{Im}(\bar w_1\,\partial_e w_1)\right],\qquad
+//! $$`D\left[Q^4|w_1|^2 + 6Q^2|\partial_e w_1|^2 + 2Q^2|\partial_{e^\perp} w_1|^2 +
+//! 4Q^3\,\mathrm{Im}(\bar w_1\,\partial_e w_1)\right],\qquad
 //! \mathrm{Im}(\bar w_1\,\partial_e w_1) = a\,\partial_e b - b\,\partial_e a .`$$
 //! The $`4Q^3`$ term is absent from the printed (39). For a plane wave
 //! $`w_1 = r e^{ik\,\mathbf e\cdot\mathbf X}`$ the density is $`Dr^2(Q^4 + 4Q^3k + 6Q^2k^2)`$,
