@@ -1,4 +1,5 @@
-//! Legendre–Hadamard (strong ellipticity) check of a model's energy density, for any model.
+//! Legendre–Hadamard (strong ellipticity) check of a model's energy density, for any model, and
+//! the pointwise stability check of the fields that have no gradient stiffness.
 //!
 //! The margin reported is the smallest $`LDL^T`$ pivot of $`A(\mathbf{n})`$ over sampled
 //! directions, relative to its largest diagonal entry: positive iff $`A(\mathbf{n})`$ is positive
@@ -11,15 +12,36 @@
 //! every unit $`\mathbf{n}`$ (for one scalar field, the envelope, this is positivity of its
 //! $`2\times 2`$ gradient block). When it fails, the discrete problem's solutions depend on
 //! the mesh: an envelope model has stopped being valid there.
+//!
+//! **Fields without gradient stiffness.** A field $`f`$ whose second derivatives
+//! $`\partial^2\psi/\partial(\partial_a f)\,\partial(\partial_b f)`$ vanish identically (no term's
+//! tangent pattern holds such an entry; e.g. the envelope $`w`$ of the pure membrane model,
+//! THEORY.md §5) has no row in $`A(\mathbf{n})`$, so the test above cannot see it. Its second
+//! variation, for a perturbation $`\delta f`$ alone, is purely local:
+//! $$`\delta^2\Pi[\delta f] = \int_\Omega k_f\,\delta f^2\,d\Omega,\qquad
+//! k_f = \sum_t \frac{\partial^2\psi_t}{\partial f^2},`$$
+//! with no length scale. Where $`k_f(\mathbf{X}_0) < 0`$, every perturbation concentrated near
+//! $`\mathbf{X}_0`$ — of any support and any oscillation, down to the mesh size — lowers the
+//! energy: the linearised $`f`$-equation $`k_f\,\delta f = \dots`$ is a pointwise law with a
+//! negative coefficient, ill-posed in the same sense as a loss of strong ellipticity (it is the
+//! zeroth-order analogue of the Legendre–Hadamard condition: the oscillating perturbations
+//! $`\delta f = \varphi(\mathbf X)\cos(\mathbf n\cdot\mathbf X/\epsilon)`$, $`\epsilon\to 0`$, that
+//! probe $`A(\mathbf n)`$ for gradient fields probe $`k_f`$ here). For the pure membrane,
+//! $`k_w = 2Q^2(N_e + DQ^2)`$ on a flat state: negative beyond its threshold $`N_e < -DQ^2`$.
+//! The margin of such a field is $`k_f / \sum_t |\partial^2\psi_t/\partial f^2|`$ (negative =
+//! ill-posed); its area counts in [`EllipticityReport::violated_fraction`].
+//! Only the diagonal $`k_f`$ is checked: couplings of $`f`$ to other fields' gradients (which
+//! also act at the oscillation scale, and vanish on a flat state) are not.
 
 use crate::fem::element::{ElementValues, GaussRule, QUAD8_NODES};
-use crate::model::{Derivative, EnergyModel};
+use crate::model::{Derivative, EnergyModel, ModelSpec};
 use crate::problem::Problem;
 
 /// Outcome of a Legendre–Hadamard check over the whole domain.
 #[derive(Clone, Debug, PartialEq)]
 pub struct EllipticityReport {
-    /// Whether $`A(\mathbf{n})`$ is positive definite at every checked point and direction.
+    /// Whether $`A(\mathbf{n})`$ is positive definite at every checked point and direction (the
+    /// Legendre–Hadamard condition over the gradient block only; see [`Self::well_posed`]).
     pub elliptic: bool,
     /// Smallest $`LDL^T`$ pivot of $`A(\mathbf{n})`$ over points and directions, divided by the
     /// largest diagonal entry at the same point (negative = violated).
@@ -30,7 +52,36 @@ pub struct EllipticityReport {
     pub direction: f64,
     /// Field whose pivot is the smallest at the worst point.
     pub field: &'static str,
-    /// Area fraction of the domain (quadrature weights) where the condition fails.
+    /// Area fraction of the domain (quadrature weights) where the condition fails: the
+    /// Legendre–Hadamard condition, or the pointwise condition $`k_f \ge 0`$ of a field without
+    /// gradient stiffness (see the module documentation), or both.
+    pub violated_fraction: f64,
+    /// One entry per field without gradient stiffness (in field order; empty for models whose
+    /// every field has one).
+    pub gradient_free: Vec<PointwiseReport>,
+}
+
+impl EllipticityReport {
+    /// Strongly elliptic and every field without gradient stiffness pointwise stable.
+    pub fn well_posed(&self) -> bool {
+        self.elliptic && self.gradient_free.iter().all(|f| f.stable)
+    }
+}
+
+/// Pointwise check of one field without gradient stiffness: the sign of
+/// $`k_f = \sum_t \partial^2\psi_t/\partial f^2`$ (module documentation).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PointwiseReport {
+    /// The field.
+    pub field: &'static str,
+    /// Whether $`k_f \ge 0`$ (to the relative tolerance) at every checked point.
+    pub stable: bool,
+    /// Smallest $`k_f / \sum_t |\partial^2\psi_t/\partial f^2|`$ over the points (negative =
+    /// ill-posed; $`+\infty`$ when no point was checked).
+    pub worst_margin: f64,
+    /// Where the worst margin occurs.
+    pub location: [f64; 2],
+    /// Area fraction of the domain where $`k_f < 0`$.
     pub violated_fraction: f64,
 }
 
@@ -69,8 +120,140 @@ const DIRECTIONS: usize = 36;
 /// Relative tolerance below which a margin counts as a violation.
 const MARGIN_TOLERANCE: f64 = 1e-10;
 
+/// Fields without gradient stiffness: no term's tangent pattern couples two derivatives
+/// ($`X`$ or $`Y`$) of the field, so $`\partial^2\psi/\partial(\partial_a f)\partial(\partial_b f)
+/// \equiv 0`$. Only fields with a value–value entry somewhere (something to check) are listed.
+pub fn gradient_free_fields(spec: &ModelSpec) -> Vec<usize> {
+    let entries = |wanted: &dyn Fn(usize, usize) -> bool| {
+        spec.terms.iter().any(|term| {
+            term.tangent_pattern
+                .iter()
+                .any(|&(i, j)| wanted(term.jet[i], term.jet[j]))
+        })
+    };
+    (0..spec.fields.len())
+        .filter(|&f| {
+            let gradient =
+                |k: usize| spec.jet[k].field == f && spec.jet[k].derivative != Derivative::Value;
+            let value =
+                |k: usize| spec.jet[k].field == f && spec.jet[k].derivative == Derivative::Value;
+            !entries(&|i, j| gradient(i) && gradient(j)) && entries(&|i, j| value(i) && value(j))
+        })
+        .collect()
+}
+
+/// Second derivatives at one quadrature point, summed over terms: the gradient block
+/// $`H`$ (index `2 * slot + axis` of the gradient fields) and, per gradient-free field, the
+/// value stiffness $`k_f`$ with the sum of the terms' magnitudes.
+struct PointHessian {
+    gradient_block: Vec<f64>,
+    value_stiffness: Vec<(f64, f64)>,
+}
+
+/// Evaluates every term's tangent at quadrature point `q` of `values` and gathers
+/// [`PointHessian`].
+fn point_hessian<M: EnergyModel>(
+    model: &M,
+    nodal: &[&[f64]],
+    values: &ElementValues,
+    q: usize,
+    gradient_fields: &[usize],
+    gradient_free: &[usize],
+    hessians: &mut [Vec<f64>],
+) -> PointHessian {
+    let spec = M::SPEC;
+    let m = gradient_fields.len();
+    let slot = |field: usize| gradient_fields.iter().position(|&f| f == field);
+    let axis = |d: Derivative| match d {
+        Derivative::X => Some(0),
+        Derivative::Y => Some(1),
+        Derivative::Value => None,
+    };
+    let mut point = PointHessian {
+        gradient_block: vec![0.0; 4 * m * m],
+        value_stiffness: vec![(0.0, 0.0); gradient_free.len()],
+    };
+    for (t, term) in spec.terms.iter().enumerate() {
+        let jet: Vec<f64> = term
+            .jet
+            .iter()
+            .map(|&i| {
+                let entry = spec.jet[i];
+                (0..QUAD8_NODES)
+                    .map(|k| {
+                        let b = match entry.derivative {
+                            Derivative::Value => values.values[q][k],
+                            Derivative::X => values.gradients[q][k][0],
+                            Derivative::Y => values.gradients[q][k][1],
+                        };
+                        b * nodal[k][entry.field]
+                    })
+                    .sum()
+            })
+            .collect();
+        model.tangent(t, &jet, &mut hessians[t]);
+        for (p, &(i, j)) in term.tangent_pattern.iter().enumerate() {
+            let (ei, ej) = (spec.jet[term.jet[i]], spec.jet[term.jet[j]]);
+            let value = hessians[t][p];
+            if let (Some(ai), Some(aj), Some(si), Some(sj)) = (
+                axis(ei.derivative),
+                axis(ej.derivative),
+                slot(ei.field),
+                slot(ej.field),
+            ) {
+                let (r, c) = (2 * si + ai, 2 * sj + aj);
+                point.gradient_block[r * 2 * m + c] += value;
+                if r != c {
+                    point.gradient_block[c * 2 * m + r] += value;
+                }
+            }
+            if ei == ej
+                && ei.derivative == Derivative::Value
+                && let Some(s) = gradient_free.iter().position(|&f| f == ei.field)
+            {
+                point.value_stiffness[s].0 += value;
+                point.value_stiffness[s].1 += value.abs();
+            }
+        }
+    }
+    point
+}
+
+/// Smallest relative pivot of $`A(\mathbf n)`$ over the sampled directions at one point:
+/// `(margin, direction angle, slot of the smallest pivot)`.
+fn worst_direction(h: &[f64], m: usize) -> (f64, f64, usize) {
+    let mut worst = (f64::INFINITY, 0.0, 0);
+    for k in 0..DIRECTIONS {
+        let angle = std::f64::consts::PI * k as f64 / DIRECTIONS as f64;
+        let n = [angle.cos(), angle.sin()];
+        // A(n) on the stack, then its LDLᵀ pivots (positive definite ⇔ all pivots > 0).
+        let mut acoustic = [[0.0; MAX_GRADIENT_FIELDS]; MAX_GRADIENT_FIELDS];
+        let mut scale: f64 = 0.0;
+        for i in 0..m {
+            for j in 0..m {
+                let mut sum = 0.0;
+                for a in 0..2 {
+                    for b in 0..2 {
+                        sum += h[(2 * i + a) * 2 * m + (2 * j + b)] * n[a] * n[b];
+                    }
+                }
+                acoustic[i][j] = sum;
+            }
+            scale = scale.max(acoustic[i][i].abs());
+        }
+        let (pivot, at) = smallest_pivot(&mut acoustic, m);
+        let margin = if scale > 0.0 { pivot / scale } else { 0.0 };
+        if margin < worst.0 {
+            worst = (margin, angle, at);
+        }
+    }
+    worst
+}
+
 /// Checks strong ellipticity at the 3×3 Gauss points of every element for the state `free` at
-/// load `load`. All terms are evaluated at the same points (whatever rule they integrate with).
+/// load `load`, and the pointwise stability $`k_f \ge 0`$ of every field without gradient
+/// stiffness ([`gradient_free_fields`]) at the same points. All terms are evaluated at the same
+/// points (whatever rule they integrate with).
 pub fn legendre_hadamard<M: EnergyModel>(
     problem: &Problem<M>,
     free: &[f64],
@@ -81,9 +264,9 @@ pub fn legendre_hadamard<M: EnergyModel>(
     let assembler = &problem.assembler;
     let mesh = assembler.mesh();
     let global = assembler.dofs().expand(free, load);
-    let model = assembler.model();
     let rule = GaussRule::square(3);
     let gradient_fields: Vec<usize> = (0..nf).filter(|&f| spec.needs_gradient(f)).collect();
+    let gradient_free = gradient_free_fields(spec);
     let m = gradient_fields.len();
     let mut report = EllipticityReport {
         elliptic: true,
@@ -92,13 +275,23 @@ pub fn legendre_hadamard<M: EnergyModel>(
         direction: 0.0,
         field: spec.fields.first().copied().unwrap_or(""),
         violated_fraction: 0.0,
+        gradient_free: gradient_free
+            .iter()
+            .map(|&f| PointwiseReport {
+                field: spec.fields[f],
+                stable: true,
+                worst_margin: f64::INFINITY,
+                location: [0.0, 0.0],
+                violated_fraction: 0.0,
+            })
+            .collect(),
     };
-    let mut total_area = 0.0;
-    let mut violated_area = 0.0;
-    if m == 0 {
+    if m == 0 && gradient_free.is_empty() {
         return report;
     }
-    let slot = |field: usize| gradient_fields.iter().position(|&f| f == field);
+    let mut total_area = 0.0;
+    let mut violated_area = 0.0;
+    let mut field_violated_area = vec![0.0; gradient_free.len()];
     let mut hessians: Vec<Vec<f64>> = spec
         .terms
         .iter()
@@ -108,72 +301,25 @@ pub fn legendre_hadamard<M: EnergyModel>(
         let Ok(values) = ElementValues::new(e, &mesh.element_coordinates(e), &rule, true) else {
             continue;
         };
+        let nodal: Vec<&[f64]> = mesh.elements[e]
+            .iter()
+            .map(|&node| &global[node * nf..(node + 1) * nf])
+            .collect();
         for q in 0..values.weights.len() {
-            total_area += values.weights[q];
+            let weight = values.weights[q];
+            total_area += weight;
+            let point = point_hessian(
+                assembler.model(),
+                &nodal,
+                &values,
+                q,
+                &gradient_fields,
+                &gradient_free,
+                &mut hessians,
+            );
             let mut point_violated = false;
-            // H over (gradient field slot, axis) pairs: index 2 * slot + axis.
-            let mut h = vec![0.0; 4 * m * m];
-            for (t, term) in spec.terms.iter().enumerate() {
-                let jet: Vec<f64> = term
-                    .jet
-                    .iter()
-                    .map(|&i| {
-                        let entry = spec.jet[i];
-                        (0..QUAD8_NODES)
-                            .map(|k| {
-                                let node = mesh.elements[e][k];
-                                let b = match entry.derivative {
-                                    Derivative::Value => values.values[q][k],
-                                    Derivative::X => values.gradients[q][k][0],
-                                    Derivative::Y => values.gradients[q][k][1],
-                                };
-                                b * global[node * nf + entry.field]
-                            })
-                            .sum()
-                    })
-                    .collect();
-                model.tangent(t, &jet, &mut hessians[t]);
-                for (p, &(i, j)) in term.tangent_pattern.iter().enumerate() {
-                    let (ei, ej) = (spec.jet[term.jet[i]], spec.jet[term.jet[j]]);
-                    let axis = |d: Derivative| match d {
-                        Derivative::X => Some(0),
-                        Derivative::Y => Some(1),
-                        Derivative::Value => None,
-                    };
-                    if let (Some(ai), Some(aj), Some(si), Some(sj)) = (
-                        axis(ei.derivative),
-                        axis(ej.derivative),
-                        slot(ei.field),
-                        slot(ej.field),
-                    ) {
-                        let (r, c) = (2 * si + ai, 2 * sj + aj);
-                        h[r * 2 * m + c] += hessians[t][p];
-                        if r != c {
-                            h[c * 2 * m + r] += hessians[t][p];
-                        }
-                    }
-                }
-            }
-            for k in 0..DIRECTIONS {
-                let angle = std::f64::consts::PI * k as f64 / DIRECTIONS as f64;
-                let n = [angle.cos(), angle.sin()];
-                // A(n) on the stack, then its LDLᵀ pivots (positive definite ⇔ all pivots > 0).
-                let mut acoustic = [[0.0; MAX_GRADIENT_FIELDS]; MAX_GRADIENT_FIELDS];
-                let mut scale: f64 = 0.0;
-                for i in 0..m {
-                    for j in 0..m {
-                        let mut sum = 0.0;
-                        for a in 0..2 {
-                            for b in 0..2 {
-                                sum += h[(2 * i + a) * 2 * m + (2 * j + b)] * n[a] * n[b];
-                            }
-                        }
-                        acoustic[i][j] = sum;
-                    }
-                    scale = scale.max(acoustic[i][i].abs());
-                }
-                let (pivot, at) = smallest_pivot(&mut acoustic, m);
-                let margin = if scale > 0.0 { pivot / scale } else { 0.0 };
+            if m > 0 {
+                let (margin, angle, at) = worst_direction(&point.gradient_block, m);
                 point_violated |= margin <= -MARGIN_TOLERANCE;
                 if margin < report.worst_margin {
                     report.worst_margin = margin;
@@ -182,14 +328,173 @@ pub fn legendre_hadamard<M: EnergyModel>(
                     report.field = spec.fields[gradient_fields[at]];
                 }
             }
+            for (s, &(stiffness, magnitude)) in point.value_stiffness.iter().enumerate() {
+                let margin = if magnitude > 0.0 {
+                    stiffness / magnitude
+                } else {
+                    0.0
+                };
+                let field = &mut report.gradient_free[s];
+                if margin < field.worst_margin {
+                    field.worst_margin = margin;
+                    field.location = values.points[q];
+                }
+                if margin <= -MARGIN_TOLERANCE {
+                    field_violated_area[s] += weight;
+                    point_violated = true;
+                }
+            }
             if point_violated {
-                violated_area += values.weights[q];
+                violated_area += weight;
             }
         }
     }
     if total_area > 0.0 {
         report.violated_fraction = violated_area / total_area;
+        for (field, area) in report.gradient_free.iter_mut().zip(&field_violated_area) {
+            field.violated_fraction = area / total_area;
+        }
     }
     report.elliptic = report.worst_margin > -MARGIN_TOLERANCE;
+    for field in report.gradient_free.iter_mut() {
+        field.stable = field.worst_margin > -MARGIN_TOLERANCE;
+    }
     report
+}
+
+#[cfg(test)]
+mod tests {
+    //! A hand-written two-field density with a closed-form answer:
+    //! $`\psi = \tfrac12|\nabla g|^2 + \tfrac12 k f^2 - \tfrac12 s f^2`$ (three terms), so that
+    //! $`A(\mathbf n) = 1`$ for $`g`$ (margin 1 everywhere) and $`f`$ has no gradient stiffness,
+    //! $`k_f = k - s`$, margin $`(k - s)/(k + s)`$.
+
+    use super::*;
+    use crate::fem::Mesh;
+    use crate::model::{FieldRole, JetEntry, QuadratureRule, TermSpec};
+    use crate::scalar::Scalar;
+    use std::sync::Arc;
+
+    const fn term(name: &'static str, jet: &'static [usize]) -> TermSpec {
+        TermSpec {
+            name,
+            quadrature: QuadratureRule::Full,
+            jet,
+            tangent_pattern: if jet.len() == 2 {
+                &[(0, 0), (1, 1)]
+            } else {
+                &[(0, 0)]
+            },
+            taylor_slots: jet.len(),
+            linear_residual: false,
+        }
+    }
+
+    static TERMS: [TermSpec; 3] = [
+        term("gradient", &[0, 1]),
+        term("spring", &[2]),
+        term("softening", &[2]),
+    ];
+
+    static SPEC: ModelSpec = ModelSpec {
+        name: "test-gradient-free",
+        description: "½|∇g|² + ½ k f² − ½ s f²",
+        fields: &["g", "f"],
+        field_roles: &[FieldRole::Other, FieldRole::Other],
+        parameters: &["k", "s"],
+        jet: &[
+            JetEntry {
+                field: 0,
+                derivative: Derivative::X,
+            },
+            JetEntry {
+                field: 0,
+                derivative: Derivative::Y,
+            },
+            JetEntry {
+                field: 1,
+                derivative: Derivative::Value,
+            },
+        ],
+        terms: &TERMS,
+        simplification_report: "hand-written",
+    };
+
+    #[derive(Clone, Debug)]
+    struct GradientFree {
+        k: f64,
+        s: f64,
+    }
+
+    impl EnergyModel for GradientFree {
+        const SPEC: &'static ModelSpec = &SPEC;
+        fn from_parameters(values: &[f64]) -> Self {
+            GradientFree {
+                k: values[0],
+                s: values[1],
+            }
+        }
+        fn parameter_values(&self) -> Vec<f64> {
+            vec![self.k, self.s]
+        }
+        fn energy<S: Scalar>(&self, term: usize, jet: &[S]) -> S {
+            match term {
+                0 => (jet[0] * jet[0] + jet[1] * jet[1]) * 0.5,
+                1 => jet[0] * jet[0] * (0.5 * self.k),
+                _ => jet[0] * jet[0] * (-0.5 * self.s),
+            }
+        }
+        fn residual<S: Scalar>(&self, term: usize, jet: &[S], out: &mut [S]) {
+            match term {
+                0 => out.copy_from_slice(&jet[..2]),
+                1 => out[0] = jet[0] * self.k,
+                _ => out[0] = jet[0] * (-self.s),
+            }
+        }
+        fn tangent<S: Scalar>(&self, term: usize, _jet: &[S], out: &mut [S]) {
+            match term {
+                0 => out.iter_mut().for_each(|o| *o = S::from_f64(1.0)),
+                1 => out[0] = S::from_f64(self.k),
+                _ => out[0] = S::from_f64(-self.s),
+            }
+        }
+    }
+
+    fn report(k: f64, s: f64) -> EllipticityReport {
+        let mesh = Arc::new(Mesh::rectangle(2.0, 1.0, 3, 2, 1.0).unwrap());
+        let problem = Problem::new(GradientFree { k, s }, mesh, &[], &[], &[]).unwrap();
+        legendre_hadamard(&problem, &vec![0.0; problem.free_count()], 0.0)
+    }
+
+    #[test]
+    fn gradient_free_field_is_detected_from_the_tangent_pattern() {
+        assert_eq!(gradient_free_fields(&SPEC), vec![1]);
+    }
+
+    #[test]
+    fn positive_value_stiffness_is_well_posed_and_leaves_the_gradient_check_alone() {
+        let r = report(3.0, 1.0);
+        assert!(r.elliptic && r.well_posed());
+        assert_eq!((r.worst_margin, r.field), (1.0, "g"));
+        assert_eq!(r.violated_fraction, 0.0);
+        assert_eq!(r.gradient_free.len(), 1);
+        let f = &r.gradient_free[0];
+        assert_eq!(f.field, "f");
+        assert!(f.stable && f.violated_fraction == 0.0);
+        assert!((f.worst_margin - 0.5).abs() < 1e-15, "{}", f.worst_margin);
+    }
+
+    #[test]
+    fn negative_value_stiffness_is_ill_posed_over_the_whole_area() {
+        let r = report(1.0, 3.0);
+        // The gradient block is untouched: still strongly elliptic in the old sense.
+        assert!(r.elliptic);
+        assert_eq!(r.worst_margin, 1.0);
+        assert!(!r.well_posed());
+        assert!((r.violated_fraction - 1.0).abs() < 1e-12);
+        let f = &r.gradient_free[0];
+        assert!(!f.stable);
+        assert!((f.violated_fraction - 1.0).abs() < 1e-12);
+        assert!((f.worst_margin + 0.5).abs() < 1e-15, "{}", f.worst_margin);
+    }
 }
