@@ -223,10 +223,11 @@ impl<M: EnergyModel> PathRecorder<'_, M> {
             true
         } else {
             let report = legendre_hadamard(self.problem, &state.displacement, state.load);
-            if !report.elliptic && self.trace.loss_of_ellipticity.is_none() {
-                self.trace.loss_of_ellipticity = Some((state.load, report.clone()));
+            let well_posed = report.well_posed();
+            if !well_posed && self.trace.loss_of_ellipticity.is_none() {
+                self.trace.loss_of_ellipticity = Some((state.load, report));
             }
-            report.elliptic
+            well_posed
         };
         let biaxial = self.scene.load.kind == LoadKind::Biaxial;
         self.trace.points.push(PathPoint {

@@ -6,9 +6,10 @@
 //! envelope model is meaningful — wavelengths $`\ell = 2\pi/Q`$ between
 //! [`MIN_WAVELENGTH_OVER_THICKNESS`]$`\,h`$ and the shorter side of the domain — then refines
 //! the best bracket (`wrinkle_runtime::solve::wavenumber`). A model whose $`\lambda_c(Q)`$ keeps
-//! falling to the end of the range (the pure membrane, threshold $`DQ^2`$) has no wavelength
-//! selection of its own: its $`Q`$ is then taken from the reference envelope's minimisation on
-//! the same scene, and a note says so. A complex envelope (a model with a phase) takes the
+//! falling to the end of the range has no wavelength selection of its own: its $`Q`$ is then
+//! taken from the reference envelope's minimisation on the same scene, and a note says so. A
+//! model whose envelope has no gradient at all (the pure membrane, threshold $`DQ^2`$) is known
+//! to be such a model and skips its own scan. A complex envelope (a model with a phase) takes the
 //! reference envelope's $`Q`$ as its carrier too: its phase moves the local wavenumber freely
 //! and its bending is a second-order expansion about $`Q`$, so its own $`\lambda_c(Q)`$ is
 //! meaningless away from the reference optimum (measured: a spurious minimum at
@@ -20,7 +21,10 @@
 //! * strong ellipticity at the threshold (area fraction where the Legendre–Hadamard condition
 //!   fails at most [`MAX_NON_ELLIPTIC_FRACTION`]);
 //! * mode resolution of the plate: at least [`MIN_ELEMENTS_PER_WAVELENGTH`] elements per
-//!   wavelength along the wave direction.
+//!   wavelength along the wave direction;
+//! * well-posedness beyond the threshold: a field without gradient stiffness (the pure
+//!   membrane's envelope) that is pointwise unstable over most of the area at
+//!   [`WELL_POSEDNESS_LOAD_RATIO`]$`\,\lambda_c`$ on the fundamental branch.
 
 use crate::Error;
 use crate::output::{ProgressSink, SearchProgress};
@@ -126,12 +130,21 @@ pub fn find_threshold<M: EnergyModel>(
     let options = LinearBucklingOptions::default();
     let (buckling, ellipticity, q, source, search) = match (scene.model.wavenumber, has_wavenumber)
     {
-        (Wavenumber::Auto, true) if has_phase(M::SPEC) => {
+        (Wavenumber::Auto, true)
+            if has_phase(M::SPEC) || !M::SPEC.needs_gradient(layout.primary) =>
+        {
             let q = reference_wavenumber(scene, quiet)?;
-            notes.push(format!(
-                "model `{}` has a phase: its local wavenumber Q + ∂arg(w1) is free, and its bending (a second-order expansion about Q) is only valid near the carrier Q, so λ_c(Q) has no meaningful minimum of its own; Q = {q:.6e} 1/mm is the reference-envelope minimiser on the same scene",
-                M::SPEC.name
-            ));
+            notes.push(if has_phase(M::SPEC) {
+                format!(
+                    "model `{}` has a phase: its local wavenumber Q + ∂arg(w1) is free, and its bending (a second-order expansion about Q) is only valid near the carrier Q, so λ_c(Q) has no meaningful minimum of its own; Q = {q:.6e} 1/mm is the reference-envelope minimiser on the same scene",
+                    M::SPEC.name
+                )
+            } else {
+                format!(
+                    "model `{}` has no gradient of its envelope, hence no wavelength selection of its own (its threshold D Q² falls with Q); Q = {q:.6e} 1/mm is the reference-envelope minimiser on the same scene",
+                    M::SPEC.name
+                )
+            });
             set_model_parameter(problem, "wavenumber", q)
                 .map_err(|e| Error::Solver(e.to_string()))?;
             let buckling = linear_buckling(problem, factor, &options)
@@ -180,6 +193,9 @@ pub fn find_threshold<M: EnergyModel>(
         seconds: 0.0,
     };
     threshold.warnings = validity_warnings(scene, &layout, &threshold);
+    threshold
+        .warnings
+        .extend(well_posedness_beyond(problem, &threshold.buckling));
     threshold.seconds = start.elapsed().as_secs_f64();
     Ok(threshold)
 }
@@ -331,6 +347,41 @@ fn mode_wavelength<M: EnergyModel>(
     };
     let length = 2.0 * scene.geometry.length_x.hypot(scene.geometry.length_y);
     wavelength_along_line(&snapshot, [peak[0], peak[1]], length)
+}
+
+/// Load factor, relative to $`\lambda_c`$, at which the fundamental branch is checked for
+/// pointwise well-posedness.
+pub const WELL_POSEDNESS_LOAD_RATIO: f64 = 1.05;
+
+/// A model without gradient stiffness in a transverse field (the pure membrane) is ill-posed
+/// beyond its threshold: the fundamental branch at $`1.05\lambda_c`$ is pointwise unstable over
+/// most of the area at once, so there is no length scale and the post-buckling solution depends
+/// on the mesh. Checked on the fundamental state extrapolated to $`1.05\lambda_c`$.
+fn well_posedness_beyond<M: EnergyModel>(
+    problem: &Problem<M>,
+    buckling: &LinearBuckling,
+) -> Option<ValidityWarning> {
+    let load = WELL_POSEDNESS_LOAD_RATIO * buckling.critical_loads[0];
+    let state: Vec<f64> = buckling
+        .prebuckling
+        .iter()
+        .zip(&buckling.prebuckling_rate)
+        .map(|(u, r)| u + load * r)
+        .collect();
+    let report = wrinkle_runtime::solve::ellipticity::legendre_hadamard(problem, &state, load);
+    let worst = report
+        .gradient_free
+        .iter()
+        .filter(|f| !f.stable)
+        .max_by(|a, b| a.violated_fraction.total_cmp(&b.violated_fraction))?;
+    (worst.violated_fraction > 0.5).then(|| ValidityWarning {
+        check: "well_posedness",
+        message: format!(
+            "field `{}` has no gradient stiffness and is pointwise unstable over {:.0} % of the area just beyond the threshold (λ = {WELL_POSEDNESS_LOAD_RATIO} λ_c): the model is ill-posed there — no length scale, post-buckling results depend on the mesh",
+            worst.field,
+            100.0 * worst.violated_fraction
+        ),
+    })
 }
 
 /// The validity checks of the module documentation.
