@@ -59,6 +59,11 @@ pub enum Command {
         /// Comma-separated model names (default: every registered model).
         #[arg(long, value_delimiter = ',')]
         models: Vec<String>,
+        /// Override a scene key for one model only, `MODEL:KEY=VALUE` (repeatable), e.g.
+        /// `--model-set fvk-plate:mesh.nx=128` to resolve the plate's wrinkles while the
+        /// envelope models keep the coarse mesh.
+        #[arg(long = "model-set", value_name = "MODEL:KEY=VALUE")]
+        model_overrides: Vec<String>,
         /// Output directory (default: `output.directory`/compare).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
@@ -164,6 +169,7 @@ pub fn execute(command: &Command) -> Result<(), Error> {
         Command::Compare {
             scene,
             models,
+            model_overrides,
             out,
             quiet,
         } => {
@@ -179,7 +185,8 @@ pub fn execute(command: &Command) -> Result<(), Error> {
             let directory = out
                 .clone()
                 .unwrap_or_else(|| PathBuf::from(&scene.output.directory).join("compare"));
-            let comparison = crate::compare::compare(&scene, &models, &directory, *quiet)?;
+            let comparison =
+                crate::compare::compare(&scene, &models, model_overrides, &directory, *quiet)?;
             print_stdout(&crate::compare::comparison_table(
                 &comparison,
                 crate::threshold::load_unit(&scene),

@@ -4,7 +4,8 @@
 //! imperfection size, same amplitude target); then `OUT/compare.csv`, `OUT/compare.json` and
 //! the overlaid response plot `OUT/compare.png|svg` put the thresholds, wavelengths and the
 //! loads at given physical amplitudes next to each other. A model that fails does not stop the
-//! others: its row says why.
+//! others: its row says why. `MODEL:KEY=VALUE` overrides apply to one model only (a plate
+//! needs a mesh that resolves its wrinkles; an envelope model does not).
 
 use crate::Error;
 use crate::output::{
@@ -117,9 +118,11 @@ fn response_of(model: &str, summary: &serde_json::Value, load: &Quantity) -> Opt
 pub fn compare(
     scene: &Scene,
     models: &[String],
+    model_overrides: &[String],
     directory: &Path,
     quiet: bool,
 ) -> Result<Comparison, Error> {
+    let overrides = parse_model_overrides(models, model_overrides)?;
     let load = match scene.load.kind {
         LoadKind::Biaxial => Quantity::biaxial_load(),
         LoadKind::Strip => Quantity::end_displacement(),
@@ -129,6 +132,12 @@ pub fn compare(
     for model in models {
         let mut one = scene.clone();
         one.model.name = model.clone();
+        for (name, assignment) in &overrides {
+            if name == model {
+                one.apply_override(assignment)?;
+            }
+        }
+        one.validate()?;
         let out = directory.join(model);
         match run(&one, &out, quiet) {
             Ok(report) => {
@@ -160,6 +169,30 @@ pub fn compare(
     };
     write_comparison(scene, &comparison, &responses, directory)?;
     Ok(comparison)
+}
+
+/// Splits `MODEL:KEY=VALUE` overrides; the model must be one of `models`.
+fn parse_model_overrides(
+    models: &[String],
+    overrides: &[String],
+) -> Result<Vec<(String, String)>, Error> {
+    overrides
+        .iter()
+        .map(|text| {
+            let (model, assignment) = text.split_once(':').ok_or_else(|| {
+                Error::Usage(format!(
+                    "--model-set `{text}`: expected MODEL:KEY=VALUE, e.g. fvk-plate:mesh.nx=128"
+                ))
+            })?;
+            if !models.iter().any(|m| m == model) {
+                return Err(Error::Usage(format!(
+                    "--model-set `{text}`: `{model}` is not among the compared models ({})",
+                    models.join(", ")
+                )));
+            }
+            Ok((model.to_string(), assignment.to_string()))
+        })
+        .collect()
 }
 
 fn io_error(path: &Path) -> impl FnOnce(std::io::Error) -> Error + '_ {

@@ -314,7 +314,92 @@ impl<M: EnergyModel> PathRecorder<'_, M> {
     }
 }
 
-/// Equilibrium at $`\lambda = 0`$ under the fixed loads, then the path to the amplitude target.
+/// Equilibrium at $`\lambda = 0`$ under the fixed loads (tension, imperfection), from the
+/// pre-buckling state.
+fn start_point<M: EnergyModel>(
+    problem: &Problem<M>,
+    factor: &mut SparseFactorization,
+    threshold: &Threshold,
+) -> Result<PathState, Error> {
+    let mut matrix = problem.new_matrix();
+    let solution = newton(
+        problem,
+        threshold.buckling.prebuckling.clone(),
+        0.0,
+        factor,
+        &mut matrix,
+        &NewtonOptions::default(),
+    )
+    .map_err(|e| Error::Solver(format!("equilibrium at zero load: {e}")))?;
+    Ok(PathState {
+        displacement: solution.solution,
+        load: 0.0,
+    })
+}
+
+impl<'a, M: EnergyModel> PathRecorder<'a, M> {
+    fn new(
+        scene: &'a Scene,
+        problem: &'a Problem<M>,
+        layout: &'a Layout,
+        threshold: &Threshold,
+        start: &PathState,
+        quiet: bool,
+    ) -> Self {
+        let target = scene.solver.max_amplitude_over_thickness;
+        let mut vtu_requests = scene.output.vtu_loads.clone();
+        vtu_requests.sort_by(f64::total_cmp);
+        let shortest = scene.geometry.length_x.min(scene.geometry.length_y);
+        let closed_form = closed_form_threshold(scene).map(|_| {
+            (
+                scene.clamped_rectangle().aspect_ratio(),
+                scene.material.poisson_ratio,
+            )
+        });
+        let progress = Progress::new(
+            &format!("wrinkle run ({})", threshold.model),
+            ProgressTarget::new(
+                Quantity::new("max amplitude", "max |w| / h", ""),
+                0.0,
+                target,
+            ),
+            ProgressSink::standard_error(quiet),
+        );
+        PathRecorder {
+            scene,
+            problem,
+            layout,
+            wavenumber: threshold.wavenumber.unwrap_or(0.0),
+            wavelength: threshold.wavelength.unwrap_or(shortest / 4.0),
+            critical_load: threshold.critical_load(),
+            closed_form,
+            target,
+            vtu_requests,
+            previous: None,
+            progress,
+            trace: Trace {
+                points: Vec::new(),
+                result: PathResult {
+                    last: start.clone(),
+                    statistics: Default::default(),
+                    stop: PathStop::Observer,
+                    bifurcation: None,
+                    warnings: Vec::new(),
+                },
+                anm_steps: Vec::new(),
+                loss_of_ellipticity: None,
+                profiles: Vec::new(),
+                requested: Vec::new(),
+                last: Snap {
+                    load: 0.0,
+                    values: Vec::new(),
+                },
+            },
+        }
+    }
+}
+
+/// Equilibrium at $`\lambda = 0`$, then the path to the amplitude target.
 fn trace_path<M: EnergyModel>(
     scene: &Scene,
     problem: &Problem<M>,
@@ -323,71 +408,8 @@ fn trace_path<M: EnergyModel>(
     threshold: &Threshold,
     quiet: bool,
 ) -> Result<Trace, Error> {
-    let start = {
-        let mut matrix = problem.new_matrix();
-        let solution = newton(
-            problem,
-            threshold.buckling.prebuckling.clone(),
-            0.0,
-            factor,
-            &mut matrix,
-            &NewtonOptions::default(),
-        )
-        .map_err(|e| Error::Solver(format!("equilibrium at zero load: {e}")))?;
-        PathState {
-            displacement: solution.solution,
-            load: 0.0,
-        }
-    };
-    let target = scene.solver.max_amplitude_over_thickness;
-    let mut vtu_requests = scene.output.vtu_loads.clone();
-    vtu_requests.sort_by(f64::total_cmp);
-    let mut recorder = PathRecorder {
-        scene,
-        problem,
-        layout,
-        wavenumber: threshold.wavenumber.unwrap_or(0.0),
-        wavelength: threshold
-            .wavelength
-            .unwrap_or(scene.geometry.length_x.min(scene.geometry.length_y) / 4.0),
-        critical_load: threshold.critical_load(),
-        closed_form: closed_form_threshold(scene).map(|_| {
-            (
-                scene.clamped_rectangle().aspect_ratio(),
-                scene.material.poisson_ratio,
-            )
-        }),
-        target,
-        vtu_requests,
-        previous: None,
-        progress: Progress::new(
-            &format!("wrinkle run ({})", threshold.model),
-            ProgressTarget::new(
-                Quantity::new("max amplitude", "max |w| / h", ""),
-                0.0,
-                target,
-            ),
-            ProgressSink::standard_error(quiet),
-        ),
-        trace: Trace {
-            points: Vec::new(),
-            result: PathResult {
-                last: start.clone(),
-                statistics: Default::default(),
-                stop: PathStop::Observer,
-                bifurcation: None,
-                warnings: Vec::new(),
-            },
-            anm_steps: Vec::new(),
-            loss_of_ellipticity: None,
-            profiles: Vec::new(),
-            requested: Vec::new(),
-            last: Snap {
-                load: 0.0,
-                values: Vec::new(),
-            },
-        },
-    };
+    let start = start_point(problem, factor, threshold)?;
+    let mut recorder = PathRecorder::new(scene, problem, layout, threshold, &start, quiet);
     let max_load = (scene.solver.max_load > 0.0).then_some(scene.solver.max_load);
     let mut anm_steps = Vec::new();
     let result = {

@@ -344,59 +344,83 @@ fn response(context: &RunContext, trace: &Trace) -> Response {
     response
 }
 
-/// Profiles along X and Y through the largest wrinkle of the last state: the physical
-/// amplitude $`2|w_1|/h`$ of envelope models, the deflection $`w/h`$ of a plate.
+/// The point of the largest wrinkle of the last state: the largest envelope amplitude, or the
+/// largest $`|w|`$ of a plate, on a 201 × 201 grid.
+fn largest_wrinkle(context: &RunContext, trace: &Trace) -> Option<[f64; 2]> {
+    let last = context.snapshot(&trace.last.values);
+    let grid = GridField::sample(
+        Quantity::deflection(),
+        context.mesh.bounds(),
+        201,
+        201,
+        |x, y| {
+            last.envelope_amplitude([x, y])
+                .unwrap_or_else(|| last.deflection([x, y]).abs())
+        },
+    );
+    let (i, j, _) = grid.max_abs_point()?;
+    Some(grid.point(i, j))
+}
+
+/// The profiles of `trace` along `axis` (0: X, 1: Y) through `peak`: the physical amplitude
+/// $`2|w_1|/h`$ of envelope models, the deflection $`w/h`$ of a plate.
+fn profiles_along(
+    context: &RunContext,
+    trace: &Trace,
+    axis: usize,
+    peak: [f64; 2],
+) -> Vec<Profile> {
+    let bounds = context.mesh.bounds();
+    let h = context.scene.material.thickness;
+    let (low, high) = (bounds[2 * axis], bounds[2 * axis + 1]);
+    let samples = (2 * context.samples(high - low)).max(400);
+    let load = context.load_quantity();
+    trace
+        .profiles
+        .iter()
+        .map(|snap| {
+            let snapshot = context.snapshot(&snap.values);
+            let value = |p: [f64; 2]| match snapshot.envelope_amplitude(p) {
+                Some(a) => a / h,
+                None => snapshot.deflection(p) / h,
+            };
+            Profile {
+                label: format!("λ = {}", load.format_value(snap.load)),
+                points: (0..=samples)
+                    .map(|k| {
+                        let s = low + (high - low) * k as f64 / samples as f64;
+                        (
+                            s,
+                            value(if axis == 0 {
+                                [s, peak[1]]
+                            } else {
+                                [peak[0], s]
+                            }),
+                        )
+                    })
+                    .collect(),
+            }
+        })
+        .collect()
+}
+
+/// `profiles_x` and `profiles_y` through the largest wrinkle of the last state.
 fn write_profiles(
     context: &RunContext,
     trace: &Trace,
     dir: &Path,
 ) -> Result<Vec<(Vec<PathBuf>, String)>, Error> {
-    let bounds = context.mesh.bounds();
-    let h = context.scene.material.thickness;
-    let last = context.snapshot(&trace.last.values);
-    let grid = GridField::sample(Quantity::deflection(), bounds, 201, 201, |x, y| {
-        last.envelope_amplitude([x, y])
-            .unwrap_or_else(|| last.deflection([x, y]).abs())
-    });
-    let Some((i, j, _)) = grid.max_abs_point() else {
+    let Some(peak) = largest_wrinkle(context, trace) else {
         return Ok(Vec::new());
-    };
-    let peak = grid.point(i, j);
-    let value = |snapshot: &Snapshot, p: [f64; 2]| match snapshot.envelope_amplitude(p) {
-        Some(a) => a / h,
-        None => snapshot.deflection(p) / h,
     };
     let ordinate = if context.layout.is_envelope() {
         Quantity::new("physical amplitude", "2|w_env| / h", "")
     } else {
         Quantity::new("deflection", "w / h", "")
     };
-    let load = context.load_quantity();
     let mut out = Vec::new();
     for (name, axis) in [("profiles_x", 0usize), ("profiles_y", 1usize)] {
-        let (low, high) = (bounds[2 * axis], bounds[2 * axis + 1]);
-        let samples = (2 * context.samples(high - low)).max(400);
-        let profiles: Vec<Profile> = trace
-            .profiles
-            .iter()
-            .map(|snap| {
-                let snapshot = context.snapshot(&snap.values);
-                Profile {
-                    label: format!("λ = {}", load.format_value(snap.load)),
-                    points: (0..=samples)
-                        .map(|k| {
-                            let s = low + (high - low) * k as f64 / samples as f64;
-                            let p = if axis == 0 {
-                                [s, peak[1]]
-                            } else {
-                                [peak[0], s]
-                            };
-                            (s, value(&snapshot, p))
-                        })
-                        .collect(),
-                }
-            })
-            .collect();
+        let profiles = profiles_along(context, trace, axis, peak);
         if profiles.is_empty() {
             continue;
         }
@@ -404,7 +428,7 @@ fn write_profiles(
             (
                 "X",
                 format!(
-                    "along X at Y = {:.4} mm (through the largest wrinkle)",
+                    "along X at Y = {:.1} mm (through the largest wrinkle)",
                     peak[1]
                 ),
             )
@@ -412,7 +436,7 @@ fn write_profiles(
             (
                 "Y",
                 format!(
-                    "along Y at X = {:.4} mm (through the largest wrinkle)",
+                    "along Y at X = {:.1} mm (through the largest wrinkle)",
                     peak[0]
                 ),
             )

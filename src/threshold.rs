@@ -5,7 +5,10 @@
 //! **Wavenumber range.** The search scans $`\lambda_c(Q)`$ over the whole range where an
 //! envelope model is meaningful — wavelengths $`\ell = 2\pi/Q`$ between
 //! [`MIN_WAVELENGTH_OVER_THICKNESS`]$`\,h`$ and the shorter side of the domain — then refines
-//! the best bracket (`wrinkle_runtime::solve::wavenumber`). A model whose $`\lambda_c(Q)`$ keeps
+//! the best bracket (`wrinkle_runtime::solve::wavenumber`). **Two levels**: the global scan and
+//! a refinement to 1 % in $`Q`$ run on a mesh with half the elements each way; the real mesh then
+//! only refines within ±10 % of that minimiser (3 scan points and Brent), to $`10^{-3}`$ in $`Q`$
+//! — $`\lambda_c`$ is flat to second order there, so that is about $`10^{-6}`$ in $`\lambda_c`$. A model whose $`\lambda_c(Q)`$ keeps
 //! falling to the end of the range has no wavelength selection of its own: its $`Q`$ is then
 //! taken from the reference envelope's minimisation on the same scene, and a note says so. A
 //! model whose envelope has no gradient at all (the pure membrane, threshold $`DQ^2`$) is known
@@ -133,23 +136,8 @@ pub fn find_threshold<M: EnergyModel>(
         (Wavenumber::Auto, true)
             if has_phase(M::SPEC) || !M::SPEC.needs_gradient(layout.primary) =>
         {
-            let q = reference_wavenumber(scene, quiet)?;
-            notes.push(if has_phase(M::SPEC) {
-                format!(
-                    "model `{}` has a phase: its local wavenumber Q + ∂arg(w1) is free, and its bending (a second-order expansion about Q) is only valid near the carrier Q, so λ_c(Q) has no meaningful minimum of its own; Q = {q:.6e} 1/mm is the reference-envelope minimiser on the same scene",
-                    M::SPEC.name
-                )
-            } else {
-                format!(
-                    "model `{}` has no gradient of its envelope, hence no wavelength selection of its own (its threshold D Q² falls with Q); Q = {q:.6e} 1/mm is the reference-envelope minimiser on the same scene",
-                    M::SPEC.name
-                )
-            });
-            set_model_parameter(problem, "wavenumber", q)
-                .map_err(|e| Error::Solver(e.to_string()))?;
-            let buckling = linear_buckling(problem, factor, &options)
-                .map_err(|e| Error::Solver(format!("linear buckling: {e}")))?;
-            let ellipticity = ellipticity_at_critical_load(problem, &buckling, 0.0);
+            let (buckling, ellipticity, q) =
+                reference_carrier(scene, problem, factor, quiet, &mut notes)?;
             (
                 buckling,
                 ellipticity,
@@ -206,6 +194,59 @@ fn has_phase(spec: &wrinkle_runtime::ModelSpec) -> bool {
         .is_some()
 }
 
+/// The reference envelope's $`Q`$ as the carrier of a model that has no wavelength selection of
+/// its own (no envelope gradient) or a free phase, and the linear buckling at it.
+fn reference_carrier<M: EnergyModel>(
+    scene: &Scene,
+    problem: &mut Problem<M>,
+    factor: &mut SparseFactorization,
+    quiet: bool,
+    notes: &mut Vec<String>,
+) -> Result<(LinearBuckling, EllipticityReport, f64), Error> {
+    let options = LinearBucklingOptions::default();
+    let q = reference_wavenumber(scene, quiet)?;
+    notes.push(if has_phase(M::SPEC) {
+        format!(
+            "model `{}` has a phase: its local wavenumber Q + ∂arg(w1) is free, and its bending (a second-order expansion about Q) is only valid near the carrier Q, so λ_c(Q) has no meaningful minimum of its own; Q = {q:.6e} 1/mm is the reference-envelope minimiser on the same scene",
+            M::SPEC.name
+        )
+    } else {
+        format!(
+            "model `{}` has no gradient of its envelope, hence no wavelength selection of its own (its threshold D Q² falls with Q); Q = {q:.6e} 1/mm is the reference-envelope minimiser on the same scene",
+            M::SPEC.name
+        )
+    });
+    set_model_parameter(problem, "wavenumber", q).map_err(|e| Error::Solver(e.to_string()))?;
+    let buckling = linear_buckling(problem, factor, &options)
+        .map_err(|e| Error::Solver(format!("linear buckling: {e}")))?;
+    let ellipticity = ellipticity_at_critical_load(problem, &buckling, 0.0);
+    Ok((buckling, ellipticity, q))
+}
+
+/// Relative accuracy of $`Q`$ on the coarse mesh of the two-level search.
+const COARSE_RELATIVE_TOLERANCE: f64 = 1e-2;
+/// Relative accuracy of $`Q`$ on the real mesh: $`\lambda_c`$ is flat to second order at its
+/// minimum, so $`10^{-3}`$ in $`Q`$ is about $`10^{-6}`$ or better in $`\lambda_c`$.
+const FINE_RELATIVE_TOLERANCE: f64 = 1e-3;
+/// Log-spaced points of the global scan.
+const SCAN_POINTS: usize = 17;
+/// Half-width (as a factor) of the bracket around the coarse minimiser searched on the real mesh.
+const LOCAL_BRACKET: f64 = 1.1;
+
+/// The coarse mesh of the two-level wavenumber search: half the elements each way; `None` when
+/// the mesh has fewer than 16 × 8 elements (then the search runs on the mesh itself). The
+/// buckling mode of an envelope model is a smooth envelope, so half the elements put the coarse
+/// minimiser within the local bracket ([`LOCAL_BRACKET`]) of the fine one.
+fn coarse_scene(scene: &Scene) -> Option<Scene> {
+    let (nx, ny) = (scene.mesh.elements_x, scene.mesh.elements_y);
+    (nx >= 16 && ny >= 8).then(|| {
+        let mut coarse = scene.clone();
+        coarse.mesh.elements_x = nx / 2;
+        coarse.mesh.elements_y = ny / 2;
+        coarse
+    })
+}
+
 type SearchOutcome = (
     LinearBuckling,
     EllipticityReport,
@@ -225,6 +266,7 @@ fn search_wavenumber<M: EnergyModel>(
     let range = wavenumber_range(scene);
     let options = WavenumberSearchOptions {
         range,
+        scan_points: SCAN_POINTS,
         ..WavenumberSearchOptions::default()
     };
     let progress = SearchProgress::new(
@@ -245,13 +287,49 @@ fn search_wavenumber<M: EnergyModel>(
         };
         progress.evaluation(count, &detail);
     };
-    let search = minimise_critical_load(problem, factor, &options, &mut observer).map_err(|e| {
+    let fail = |e: wrinkle_runtime::solve::SolveError| {
         Error::Solver(format!(
             "wavenumber search of `{}` over Q in [{:.3e}, {:.3e}] 1/mm (wavelengths from {:.3e} to {:.3e} mm): {e}. \
              Hint: check that the load compresses the sheet and that the thickness and tension are physical",
-            M::SPEC.name, range.0, range.1, 2.0 * PI / range.1, 2.0 * PI / range.0
+            M::SPEC.name,
+            range.0,
+            range.1,
+            2.0 * PI / range.1,
+            2.0 * PI / range.0
         ))
-    })?;
+    };
+    let search = match coarse_scene(scene) {
+        None => minimise_critical_load(problem, factor, &options, &mut observer).map_err(fail)?,
+        Some(coarse) => {
+            // Global scan on the coarse mesh, then a local refinement on the real one.
+            let mut coarse_problem = build_problem(&coarse, problem.assembler.model().clone())?;
+            let mut coarse_factor = analyse(&coarse_problem)?;
+            let coarse_options = WavenumberSearchOptions {
+                relative_tolerance: COARSE_RELATIVE_TOLERANCE,
+                ..options.clone()
+            };
+            let first = minimise_critical_load(
+                &mut coarse_problem,
+                &mut coarse_factor,
+                &coarse_options,
+                &mut observer,
+            )
+            .map_err(fail)?;
+            let q = first.parameter;
+            let local = WavenumberSearchOptions {
+                range: (q / LOCAL_BRACKET, q * LOCAL_BRACKET),
+                scan_points: 3,
+                relative_tolerance: FINE_RELATIVE_TOLERANCE,
+                ..options.clone()
+            };
+            let mut fine =
+                minimise_critical_load(problem, factor, &local, &mut observer).map_err(fail)?;
+            let mut evaluations = first.evaluations;
+            evaluations.append(&mut fine.evaluations);
+            fine.evaluations = evaluations;
+            fine
+        }
+    };
     progress.finish(&format!(
         "Q = {:.6e}/mm, λ_c = {:.6e}",
         search.parameter, search.buckling.critical_loads[0]
