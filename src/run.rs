@@ -147,7 +147,8 @@ fn add_imperfection<M: EnergyModel>(
     }
     let epsilon = scene.solver.perturbation * scene.material.thickness / amplitude;
     let mut matrix = problem.new_matrix();
-    problem.tangent_into(&threshold.buckling.prebuckling, 0.0, &mut matrix);
+    let unloaded = crate::threshold::state_at(&threshold.buckling, threshold.reference_load, 0.0);
+    problem.tangent_into(&unloaded, 0.0, &mut matrix);
     let mut force = vec![0.0; mode.len()];
     matrix.multiply_into(mode, &mut force);
     for (f, k) in problem.loads.fixed.iter_mut().zip(&force) {
@@ -324,7 +325,7 @@ fn start_point<M: EnergyModel>(
     let mut matrix = problem.new_matrix();
     let solution = newton(
         problem,
-        threshold.buckling.prebuckling.clone(),
+        crate::threshold::state_at(&threshold.buckling, threshold.reference_load, 0.0),
         0.0,
         factor,
         &mut matrix,

@@ -269,6 +269,7 @@ fn write_plots(
         "Load against physical wrinkle amplitude".to_string(),
     ));
     out.extend(write_profiles(context, trace, dir)?);
+    out.extend(write_local_wavenumber(context, trace, dir)?);
     let bounds = context.mesh.bounds();
     let snapshot = context.snapshot(&trace.last.values);
     let (mx, my) = (
@@ -456,6 +457,76 @@ fn write_profiles(
         out.push((plot.files, format!("Profiles {location}")));
     }
     Ok(out)
+}
+
+/// For a complex envelope: the local wavenumber $`Q + \partial_e\arg w_1`$ along the wave
+/// direction through the largest wrinkle (`local_wavenumber.png|svg`), where the local
+/// amplitude exceeds 5 % of its maximum (the phase of a vanishing envelope means nothing).
+fn write_local_wavenumber(
+    context: &RunContext,
+    trace: &Trace,
+    dir: &Path,
+) -> Result<Option<(Vec<PathBuf>, String)>, Error> {
+    let crate::physics::DeflectionKind::ComplexEnvelope { .. } = context.layout.kind else {
+        return Ok(None);
+    };
+    let Some(peak) = largest_wrinkle(context, trace) else {
+        return Ok(None);
+    };
+    let bounds = context.mesh.bounds();
+    let theta = context.scene.model.direction_degrees.to_radians();
+    let (c, s) = (theta.cos(), theta.sin());
+    // The part of the line through `peak` along e inside the rectangle.
+    let along = |t: f64| [peak[0] + t * c, peak[1] + t * s];
+    let span = (bounds[1] - bounds[0]).hypot(bounds[3] - bounds[2]);
+    let step = 1e-3 * span;
+    let samples = 800;
+    let load = context.load_quantity();
+    let profiles: Vec<Profile> = trace
+        .profiles
+        .iter()
+        .map(|snap| {
+            let snapshot = context.snapshot(&snap.values);
+            let cutoff = 0.05 * snapshot.max_amplitude();
+            Profile {
+                label: format!("λ = {}", load.format_value(snap.load)),
+                points: (0..=samples)
+                    .map(|k| -span + 2.0 * span * k as f64 / samples as f64)
+                    .filter_map(|t| {
+                        let p = along(t);
+                        context.mesh.locate(p)?;
+                        (snapshot.envelope_amplitude(p)? > cutoff).then_some(())?;
+                        let q = snapshot.local_wavenumber(p, step)?;
+                        Some((if s.abs() > c.abs() { p[1] } else { p[0] }, q))
+                    })
+                    .collect(),
+            }
+        })
+        .filter(|p| p.points.len() > 1)
+        .collect();
+    if profiles.is_empty() {
+        return Ok(None);
+    }
+    let coordinate = if s.abs() > c.abs() { "Y" } else { "X" };
+    let location = format!(
+        "along the wave direction through ({:.1}, {:.1}) mm; carrier Q = {:.5} /mm; where 2|w₁| > 5 % of its maximum",
+        peak[0],
+        peak[1],
+        context.threshold.wavenumber.unwrap_or(0.0)
+    );
+    let stem = dir.join("local_wavenumber");
+    let plot = plot_profiles(
+        &stem,
+        &format!("{}: local wavenumber", context.spec.name),
+        &ProfilePlot {
+            abscissa: Quantity::coordinate(coordinate),
+            ordinate: Quantity::new("local wavenumber", "Q + ∂arg(w₁)", "1/mm"),
+            location: location.clone(),
+            profiles,
+        },
+    )
+    .map_err(io_error(&stem))?;
+    Ok(Some((plot.files, format!("Local wavenumber {location}"))))
 }
 
 /// Warnings a researcher must see: validity checks, loss of ellipticity, solver notes.

@@ -76,6 +76,8 @@ pub struct Threshold {
     pub buckling: LinearBuckling,
     /// Strong ellipticity at the threshold.
     pub ellipticity: EllipticityReport,
+    /// Load the buckling analysis linearised about (0, or a shift, see [`robust_buckling`]).
+    pub reference_load: f64,
     /// Wavenumber $`Q`$ (1/mm) of an envelope model.
     pub wavenumber: Option<f64>,
     /// Wavelength (mm): $`2\pi/Q`$, or read from the plate's mode.
@@ -130,14 +132,15 @@ pub fn find_threshold<M: EnergyModel>(
             M::SPEC.name
         ));
     }
-    let options = LinearBucklingOptions::default();
+    let mut reference_load = 0.0;
     let (buckling, ellipticity, q, source, search) = match (scene.model.wavenumber, has_wavenumber)
     {
         (Wavenumber::Auto, true)
             if has_phase(M::SPEC) || !M::SPEC.needs_gradient(layout.primary) =>
         {
-            let (buckling, ellipticity, q) =
+            let (buckling, ellipticity, q, shift) =
                 reference_carrier(scene, problem, factor, quiet, &mut notes)?;
+            reference_load = shift;
             (
                 buckling,
                 ellipticity,
@@ -151,9 +154,9 @@ pub fn find_threshold<M: EnergyModel>(
             (search.0, search.1, Some(search.2), source, search.3)
         }
         _ => {
-            let buckling = linear_buckling(problem, factor, &options)
-                .map_err(|e| Error::Solver(format!("linear buckling: {e}")))?;
-            let ellipticity = ellipticity_at_critical_load(problem, &buckling, 0.0);
+            let (buckling, shift) = robust_buckling(scene, problem, factor, quiet, &mut notes)?;
+            reference_load = shift;
+            let ellipticity = ellipticity_at_critical_load(problem, &buckling, reference_load);
             let q = match scene.model.wavenumber {
                 Wavenumber::Fixed(q) if has_wavenumber => Some(q),
                 _ => None,
@@ -171,6 +174,7 @@ pub fn find_threshold<M: EnergyModel>(
         evaluations: search.len().max(1),
         buckling,
         ellipticity,
+        reference_load,
         wavenumber: q,
         wavelength,
         wavenumber_source: source,
@@ -181,9 +185,11 @@ pub fn find_threshold<M: EnergyModel>(
         seconds: 0.0,
     };
     threshold.warnings = validity_warnings(scene, &layout, &threshold);
-    threshold
-        .warnings
-        .extend(well_posedness_beyond(problem, &threshold.buckling));
+    threshold.warnings.extend(well_posedness_beyond(
+        problem,
+        &threshold.buckling,
+        reference_load,
+    ));
     threshold.seconds = start.elapsed().as_secs_f64();
     Ok(threshold)
 }
@@ -202,9 +208,8 @@ fn reference_carrier<M: EnergyModel>(
     factor: &mut SparseFactorization,
     quiet: bool,
     notes: &mut Vec<String>,
-) -> Result<(LinearBuckling, EllipticityReport, f64), Error> {
-    let options = LinearBucklingOptions::default();
-    let q = reference_wavenumber(scene, quiet)?;
+) -> Result<(LinearBuckling, EllipticityReport, f64, f64), Error> {
+    let (q, _) = reference_threshold(scene, quiet)?;
     notes.push(if has_phase(M::SPEC) {
         format!(
             "model `{}` has a phase: its local wavenumber Q + ∂arg(w1) is free, and its bending (a second-order expansion about Q) is only valid near the carrier Q, so λ_c(Q) has no meaningful minimum of its own; Q = {q:.6e} 1/mm is the reference-envelope minimiser on the same scene",
@@ -217,10 +222,9 @@ fn reference_carrier<M: EnergyModel>(
         )
     });
     set_model_parameter(problem, "wavenumber", q).map_err(|e| Error::Solver(e.to_string()))?;
-    let buckling = linear_buckling(problem, factor, &options)
-        .map_err(|e| Error::Solver(format!("linear buckling: {e}")))?;
-    let ellipticity = ellipticity_at_critical_load(problem, &buckling, 0.0);
-    Ok((buckling, ellipticity, q))
+    let (buckling, shift) = robust_buckling(scene, problem, factor, quiet, notes)?;
+    let ellipticity = ellipticity_at_critical_load(problem, &buckling, shift);
+    Ok((buckling, ellipticity, q, shift))
 }
 
 /// Relative accuracy of $`Q`$ on the coarse mesh of the two-level search.
@@ -345,7 +349,7 @@ fn search_wavenumber<M: EnergyModel>(
         return Ok((outcome, "auto".into()));
     }
     // No wavelength selection: λ_c(Q) falls to the end of the range.
-    let q = reference_wavenumber(scene, quiet)?;
+    let (q, _) = reference_threshold(scene, quiet)?;
     notes.push(format!(
         "model `{}` has no wavelength selection of its own (its critical load falls with Q down to the end of the range, {:.3e} 1/mm); Q = {q:.6e} 1/mm is taken from the reference-envelope minimisation on the same scene",
         M::SPEC.name, range.0
@@ -364,31 +368,106 @@ struct ReferenceQ<'a> {
 }
 
 impl ModelVisitor for ReferenceQ<'_> {
-    type Output = Result<f64, Error>;
+    type Output = Result<(f64, f64), Error>;
     fn visit<M: EnergyModel>(self, mut model: M) -> Self::Output {
         configure_model(self.scene, &mut model, 1.0)?;
         let mut problem = build_problem(self.scene, model)?;
         let mut factor = analyse(&problem)?;
         let threshold = find_threshold(self.scene, &mut problem, &mut factor, self.quiet)?;
-        threshold
+        let q = threshold
             .wavenumber
-            .ok_or_else(|| Error::Solver("reference envelope without a wavenumber".into()))
+            .ok_or_else(|| Error::Solver("reference envelope without a wavenumber".into()))?;
+        Ok((q, threshold.critical_load()))
     }
 }
 
-/// $`Q`$ of the reference envelope's minimisation on `scene`.
-fn reference_wavenumber(scene: &Scene, quiet: bool) -> Result<f64, Error> {
+/// $`Q`$ and $`\lambda_c`$ of the reference envelope's minimisation on `scene`.
+/// Computed once per scene and process (a comparison asks for it for several models).
+fn reference_threshold(scene: &Scene, quiet: bool) -> Result<(f64, f64), Error> {
+    static CACHE: std::sync::Mutex<Vec<(String, (f64, f64))>> = std::sync::Mutex::new(Vec::new());
     let mut reference = scene.clone();
     reference.model.name = "reference-envelope".into();
     reference.model.parameters.clear();
-    with_model(
+    let key = reference.to_toml_string();
+    if let Ok(cache) = CACHE.lock()
+        && let Some((_, value)) = cache.iter().find(|(k, _)| *k == key)
+    {
+        return Ok(*value);
+    }
+    let value = with_model(
         "reference-envelope",
         ReferenceQ {
             scene: &reference,
             quiet,
         },
     )
-    .unwrap_or_else(|| Err(unknown_model(&reference)))
+    .unwrap_or_else(|| Err(unknown_model(&reference)))?;
+    if let Ok(mut cache) = CACHE.lock() {
+        cache.push((key, value));
+    }
+    Ok(value)
+}
+
+/// Eigen-solver restarts of the first attempt about $`\lambda = 0`$ when a shifted second
+/// attempt is possible.
+const FIRST_ATTEMPT_RESTARTS: usize = 25;
+
+/// Fraction of the guessed threshold used as the shift of the second attempt.
+const SHIFT_FRACTION: f64 = 0.8;
+
+/// Linear buckling about $`\lambda = 0`$; if that fails (a small compressed zone whose negative
+/// end of the spectrum hides behind a large positive one, as in a strip in tension), again about
+/// $`\sigma = 0.8\,\lambda_g`$ with $`\lambda_g`$ the reference envelope's threshold on the same
+/// scene: shift-invert about $`\sigma`$ makes the wanted load factors the dominant end of the
+/// spectrum. Returns the analysis and the load it linearised about.
+fn robust_buckling<M: EnergyModel>(
+    scene: &Scene,
+    problem: &Problem<M>,
+    factor: &mut SparseFactorization,
+    quiet: bool,
+    notes: &mut Vec<String>,
+) -> Result<(LinearBuckling, f64), Error> {
+    let mut options = LinearBucklingOptions::default();
+    if M::SPEC.name != "reference-envelope" {
+        // A second attempt exists: do not spend the whole restart budget on the first.
+        options.eigen.max_restarts = FIRST_ATTEMPT_RESTARTS;
+    }
+    let first = match linear_buckling(problem, factor, &options) {
+        Ok(buckling) => return Ok((buckling, 0.0)),
+        Err(error) => error,
+    };
+    let guess = if M::SPEC.name == "reference-envelope" {
+        None
+    } else {
+        reference_threshold(scene, quiet).ok().map(|(_, l)| l)
+    };
+    let Some(guess) = guess.filter(|g| g.is_finite() && *g > 0.0) else {
+        return Err(Error::Solver(format!("linear buckling: {first}")));
+    };
+    let shift = SHIFT_FRACTION * guess;
+    let shifted = LinearBucklingOptions {
+        reference_load: shift,
+        ..LinearBucklingOptions::default()
+    };
+    let buckling = linear_buckling(problem, factor, &shifted).map_err(|second| {
+        Error::Solver(format!(
+            "linear buckling: about λ = 0: {first}; about λ = {shift:.6e} (0.8 × the reference envelope's threshold): {second}"
+        ))
+    })?;
+    notes.push(format!(
+        "linear buckling about λ = 0 did not converge ({first}); solved about λ = {shift:.6e} (0.8 × the reference envelope's threshold {guess:.6e})"
+    ));
+    Ok((buckling, shift))
+}
+
+/// The pre-buckling state at `load` (linear extrapolation from the analysis about `reference`).
+pub fn state_at(buckling: &LinearBuckling, reference: f64, load: f64) -> Vec<f64> {
+    buckling
+        .prebuckling
+        .iter()
+        .zip(&buckling.prebuckling_rate)
+        .map(|(u, r)| u + (load - reference) * r)
+        .collect()
 }
 
 /// Symbolic analysis of the tangent's pattern.
@@ -438,14 +517,10 @@ pub const WELL_POSEDNESS_LOAD_RATIO: f64 = 1.05;
 fn well_posedness_beyond<M: EnergyModel>(
     problem: &Problem<M>,
     buckling: &LinearBuckling,
+    reference_load: f64,
 ) -> Option<ValidityWarning> {
     let load = WELL_POSEDNESS_LOAD_RATIO * buckling.critical_loads[0];
-    let state: Vec<f64> = buckling
-        .prebuckling
-        .iter()
-        .zip(&buckling.prebuckling_rate)
-        .map(|(u, r)| u + load * r)
-        .collect();
+    let state = state_at(buckling, reference_load, load);
     let report = wrinkle_runtime::solve::ellipticity::legendre_hadamard(problem, &state, load);
     let worst = report
         .gradient_free

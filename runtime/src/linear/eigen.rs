@@ -455,47 +455,60 @@ pub fn smallest_positive_buckling(
             .take(options.modes)
             .take_while(|pair| pair.value < -noise)
             .collect();
-        if wanted.is_empty() {
-            return Err(LinearError::NoPositiveLoadFactor {
-                most_negative_ritz_value: ritz.first().map_or(0.0, |pair| pair.value),
-            });
-        }
-        let worst = wanted
-            .iter()
-            .fold(0.0_f64, |max, pair| max.max(pair.relative_residual));
-        history.push(worst);
         let exhausted = basis.len() >= n;
-        // Rounding limits the attainable residual (about ε κ(A) for smooth modes of stiff
-        // operators): a residual that no longer halves is accepted below √tolerance (the load
-        // factor error being of the order of its square), and ends the iteration otherwise.
-        let improving_over = |window: usize| {
-            history.len() <= window || worst <= 0.5 * history[history.len() - 1 - window]
-        };
-        let stagnated = !improving_over(STAGNATION_WINDOW);
-        let converged = worst <= options.tolerance
-            || exhausted
-            || (stagnated && worst <= options.tolerance.sqrt());
-        let hopeless = !improving_over(HOPELESS_WINDOW);
-        if converged || hopeless || restarts >= options.max_restarts {
-            if !converged && !options.accept_unconverged {
-                return Err(LinearError::NotConverged {
-                    restarts,
-                    iterations: operator.applications,
-                    residual: worst,
-                    tolerance: options.tolerance,
+        if wanted.is_empty() {
+            // No negative Ritz value yet. A small negative end of the spectrum can hide behind a
+            // large positive one (a strip in tension: the compressed zone is small), so the
+            // iteration goes on, restarted on the leftmost Ritz vectors, until the leftmost
+            // Ritz pair itself has converged (then there is no positive load factor) or the
+            // restart budget is spent.
+            let leftmost = ritz.first();
+            let settled = leftmost
+                .is_none_or(|pair| pair.relative_residual <= options.tolerance.sqrt())
+                || exhausted
+                || restarts >= options.max_restarts;
+            if settled {
+                return Err(LinearError::NoPositiveLoadFactor {
+                    most_negative_ritz_value: leftmost.map_or(0.0, |pair| pair.value),
                 });
             }
-            let modes = wanted
+        } else {
+            let worst = wanted
                 .iter()
-                .map(|pair| finish_mode(&basis, pair, &operator, n))
-                .collect::<Result<Vec<_>, _>>()?;
-            let mut modes = modes;
-            modes.sort_by(|x, y| x.load_factor.total_cmp(&y.load_factor));
-            return Ok(BucklingSolution {
-                modes,
-                iterations: operator.applications,
-                converged,
-            });
+                .fold(0.0_f64, |max, pair| max.max(pair.relative_residual));
+            history.push(worst);
+            // Rounding limits the attainable residual (about ε κ(A) for smooth modes of stiff
+            // operators): a residual that no longer halves is accepted below √tolerance (the load
+            // factor error being of the order of its square), and ends the iteration otherwise.
+            let improving_over = |window: usize| {
+                history.len() <= window || worst <= 0.5 * history[history.len() - 1 - window]
+            };
+            let stagnated = !improving_over(STAGNATION_WINDOW);
+            let converged = worst <= options.tolerance
+                || exhausted
+                || (stagnated && worst <= options.tolerance.sqrt());
+            let hopeless = !improving_over(HOPELESS_WINDOW);
+            if converged || hopeless || restarts >= options.max_restarts {
+                if !converged && !options.accept_unconverged {
+                    return Err(LinearError::NotConverged {
+                        restarts,
+                        iterations: operator.applications,
+                        residual: worst,
+                        tolerance: options.tolerance,
+                    });
+                }
+                let modes = wanted
+                    .iter()
+                    .map(|pair| finish_mode(&basis, pair, &operator, n))
+                    .collect::<Result<Vec<_>, _>>()?;
+                let mut modes = modes;
+                modes.sort_by(|x, y| x.load_factor.total_cmp(&y.load_factor));
+                return Ok(BucklingSolution {
+                    modes,
+                    iterations: operator.applications,
+                    converged,
+                });
+            }
         }
         // Thick restart: keep the most negative Ritz vectors and the common residual direction.
         restarts += 1;
