@@ -25,6 +25,18 @@ pub const BUILT_IN_SOURCE: &str = "<built-in default scene>";
 /// Largest element count accepted along one side of the mesh.
 pub const MAX_ELEMENTS_PER_SIDE: usize = 100_000;
 
+/// Largest total element count $`n_x n_y`$: about 2.5 million unknowns for a five-field plate,
+/// whose sparse factor fills the 24 GiB of the reference machine. Larger meshes are refused
+/// before anything is allocated.
+pub const MAX_ELEMENTS: usize = 120_000;
+
+/// Largest accepted `solver.series_tolerance`: the step length $`(\varepsilon\|U_1\|/\|U_N\|)^{1/(N-1)}`$
+/// grows without bound with $`\varepsilon`$ (1e300 gave λ = −2.3e290 with "residual 0").
+pub const MAX_SERIES_TOLERANCE: f64 = 1e-3;
+
+/// Largest scene file read (a scene is a few hundred bytes; this stops `/dev/zero`).
+pub const MAX_SCENE_BYTES: u64 = 1 << 20;
+
 /// Tables a scene may contain.
 const SECTIONS: &[&str] = &[
     "geometry", "material", "model", "mesh", "load", "solver", "output",
@@ -311,12 +323,31 @@ impl Scene {
     pub fn load(path: impl AsRef<Path>) -> Result<Scene, Error> {
         let path = path.as_ref();
         let name = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|error| {
+        let cannot = |error: std::io::Error| {
             Error::scene(
                 format!("scene {name}"),
                 "",
                 format!("cannot read file: {error}"),
             )
+        };
+        let mut bytes = Vec::new();
+        std::io::Read::read_to_end(
+            &mut std::io::Read::take(
+                std::fs::File::open(path).map_err(cannot)?,
+                MAX_SCENE_BYTES + 1,
+            ),
+            &mut bytes,
+        )
+        .map_err(cannot)?;
+        if bytes.len() as u64 > MAX_SCENE_BYTES {
+            return Err(Error::scene(
+                format!("scene {name}"),
+                "",
+                format!("larger than {MAX_SCENE_BYTES} bytes: not a scene file"),
+            ));
+        }
+        let text = String::from_utf8(bytes).map_err(|e| {
+            Error::scene(format!("scene {name}"), "", format!("not UTF-8 text: {e}"))
         })?;
         Scene::from_toml_str(&text, &name)
     }
@@ -356,6 +387,17 @@ impl Scene {
         for key in KEYS {
             self.check_key(key)
                 .map_err(|message| Error::scene(&origin, *key, message))?;
+        }
+        let elements = self.mesh.elements_x.saturating_mul(self.mesh.elements_y);
+        if elements > MAX_ELEMENTS {
+            return Err(Error::scene(
+                &origin,
+                "mesh.nx",
+                format!(
+                    "mesh.nx × mesh.ny = {} × {} = {elements} elements is more than the {MAX_ELEMENTS} this tool solves in 24 GiB",
+                    self.mesh.elements_x, self.mesh.elements_y
+                ),
+            ));
         }
         for (name, value) in &self.model.parameters {
             if !value.is_finite() {
@@ -668,7 +710,16 @@ impl Scene {
             "mesh.grading" => at_least(self.mesh.grading, 1.0),
             "load.tension_y" => at_least(self.load.tension_y, 0.0),
             "solver.order" => count_in_range(self.solver.order, 2, 40),
-            "solver.series_tolerance" => positive(self.solver.series_tolerance),
+            "solver.series_tolerance" => {
+                let tolerance = self.solver.series_tolerance;
+                if tolerance > 0.0 && tolerance <= MAX_SERIES_TOLERANCE {
+                    Ok(())
+                } else {
+                    Err(format!(
+                        "must be > 0 and at most {MAX_SERIES_TOLERANCE:e} (a looser series lets a step run past the validity of its truncation), got {tolerance:e}"
+                    ))
+                }
+            }
             "solver.tolerance" => positive(self.solver.tolerance),
             "solver.max_steps" => count_in_range(self.solver.max_steps, 1, usize::MAX),
             "solver.max_load" => at_least(self.solver.max_load, 0.0),
