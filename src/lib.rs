@@ -16,6 +16,7 @@ pub mod commands;
 pub mod compare;
 pub mod output;
 pub mod physics;
+pub mod results;
 pub mod run;
 pub mod run_outputs;
 pub mod scene;

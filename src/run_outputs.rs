@@ -12,7 +12,7 @@ use crate::output::{
     write_surface_vtu,
 };
 use crate::physics::{Layout, Snapshot};
-use crate::run::{RunOutcome, RunReport, Snap, Trace};
+use crate::results::{RunOutcome, RunReport, Snap, Trace};
 use crate::scene::{LoadKind, Scene};
 use crate::threshold::{Threshold, closed_form_threshold, load_unit, threshold_json};
 use serde_json::json;

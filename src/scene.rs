@@ -570,73 +570,29 @@ impl Scene {
     }
 
     /// Sets one dotted key (a section or `model.parameters` takes a table) and checks its range.
-    fn apply_value(&mut self, key: &str, value: &Value) -> Result<(), KeyError> {
-        if SECTIONS.contains(&key) || key == "model.parameters" {
-            return match value {
-                Value::Table(table) => self.apply_table(key, table),
-                other => Err(KeyError::new(
-                    key,
-                    format!("expected a table, got {}", describe(other)),
-                )),
-            };
+    /// `model.parameters.NAME = number`.
+    fn apply_parameter(&mut self, key: &str, name: &str, value: &Value) -> Result<(), KeyError> {
+        if name.contains('.') {
+            return Err(KeyError::new(
+                key,
+                "model parameters are plain names (no nested tables)",
+            ));
         }
-        if let Some(name) = key.strip_prefix("model.parameters.") {
-            if name.contains('.') {
-                return Err(KeyError::new(
-                    key,
-                    "model parameters are plain names (no nested tables)",
-                ));
-            }
-            let number = number(value).map_err(|message| KeyError::new(key, message))?;
-            if !number.is_finite() {
-                return Err(KeyError::new(
-                    key,
-                    format!("must be a finite number, got {number}"),
-                ));
-            }
-            self.model.parameters.insert(name.to_string(), number);
-            return Ok(());
+        let number = number(value).map_err(|message| KeyError::new(key, message))?;
+        if !number.is_finite() {
+            return Err(KeyError::new(
+                key,
+                format!("must be a finite number, got {number}"),
+            ));
         }
+        self.model.parameters.insert(name.to_string(), number);
+        Ok(())
+    }
+
+    /// The `solver.*` and `output.*` keys (what `wrinkle run` does with the problem).
+    fn apply_run_key(&mut self, key: &str, value: &Value) -> Result<(), KeyError> {
         let error = |message: String| KeyError::new(key, message);
         match key {
-            "geometry.lx" => self.geometry.length_x = number(value).map_err(error)?,
-            "geometry.ly" => self.geometry.length_y = number(value).map_err(error)?,
-            "material.young" => self.material.young_modulus = number(value).map_err(error)?,
-            "material.poisson" => self.material.poisson_ratio = number(value).map_err(error)?,
-            "material.thickness" => self.material.thickness = number(value).map_err(error)?,
-            "model.name" => self.model.name = string(value).map_err(error)?,
-            "model.wavenumber" => {
-                self.model.wavenumber = match value {
-                    Value::String(text) if text == "auto" => Wavenumber::Auto,
-                    Value::Integer(_) | Value::Float(_) => {
-                        Wavenumber::Fixed(number(value).map_err(error)?)
-                    }
-                    other => {
-                        return Err(KeyError::new(
-                            key,
-                            format!(
-                                "expected a number > 0 (1/mm) or \"auto\", got {}",
-                                describe(other)
-                            ),
-                        ));
-                    }
-                }
-            }
-            "model.direction" => self.model.direction_degrees = number(value).map_err(error)?,
-            "mesh.nx" => {
-                self.mesh.elements_x = count(value, 1, MAX_ELEMENTS_PER_SIDE).map_err(error)?
-            }
-            "mesh.ny" => {
-                self.mesh.elements_y = count(value, 1, MAX_ELEMENTS_PER_SIDE).map_err(error)?
-            }
-            "mesh.grading" => self.mesh.grading = number(value).map_err(error)?,
-            "load.kind" => {
-                self.load.kind = match choice(value, &["biaxial", "strip"]).map_err(error)? {
-                    "biaxial" => LoadKind::Biaxial,
-                    _ => LoadKind::Strip,
-                }
-            }
-            "load.tension_y" => self.load.tension_y = number(value).map_err(error)?,
             "solver.order" => self.solver.order = count(value, 2, 40).map_err(error)?,
             "solver.series_tolerance" => {
                 self.solver.series_tolerance = number(value).map_err(error)?
@@ -678,6 +634,67 @@ impl Scene {
                     .map_err(error)?;
             }
             "output.plots" => self.output.plots = boolean(value).map_err(error)?,
+            _ => return Err(KeyError::new(key, unknown_key_message(key))),
+        }
+        Ok(())
+    }
+
+    fn apply_value(&mut self, key: &str, value: &Value) -> Result<(), KeyError> {
+        if SECTIONS.contains(&key) || key == "model.parameters" {
+            return match value {
+                Value::Table(table) => self.apply_table(key, table),
+                other => Err(KeyError::new(
+                    key,
+                    format!("expected a table, got {}", describe(other)),
+                )),
+            };
+        }
+        if let Some(name) = key.strip_prefix("model.parameters.") {
+            return self.apply_parameter(key, name, value);
+        }
+        let error = |message: String| KeyError::new(key, message);
+        match key {
+            "geometry.lx" => self.geometry.length_x = number(value).map_err(error)?,
+            "geometry.ly" => self.geometry.length_y = number(value).map_err(error)?,
+            "material.young" => self.material.young_modulus = number(value).map_err(error)?,
+            "material.poisson" => self.material.poisson_ratio = number(value).map_err(error)?,
+            "material.thickness" => self.material.thickness = number(value).map_err(error)?,
+            "model.name" => self.model.name = string(value).map_err(error)?,
+            "model.wavenumber" => {
+                self.model.wavenumber = match value {
+                    Value::String(text) if text == "auto" => Wavenumber::Auto,
+                    Value::Integer(_) | Value::Float(_) => {
+                        Wavenumber::Fixed(number(value).map_err(error)?)
+                    }
+                    other => {
+                        return Err(KeyError::new(
+                            key,
+                            format!(
+                                "expected a number > 0 (1/mm) or \"auto\", got {}",
+                                describe(other)
+                            ),
+                        ));
+                    }
+                }
+            }
+            "model.direction" => self.model.direction_degrees = number(value).map_err(error)?,
+            "mesh.nx" => {
+                self.mesh.elements_x = count(value, 1, MAX_ELEMENTS_PER_SIDE).map_err(error)?
+            }
+            "mesh.ny" => {
+                self.mesh.elements_y = count(value, 1, MAX_ELEMENTS_PER_SIDE).map_err(error)?
+            }
+            "mesh.grading" => self.mesh.grading = number(value).map_err(error)?,
+            "load.kind" => {
+                self.load.kind = match choice(value, &["biaxial", "strip"]).map_err(error)? {
+                    "biaxial" => LoadKind::Biaxial,
+                    _ => LoadKind::Strip,
+                }
+            }
+            "load.tension_y" => self.load.tension_y = number(value).map_err(error)?,
+            _ if key.starts_with("solver.") || key.starts_with("output.") => {
+                self.apply_run_key(key, value)?
+            }
             _ => return Err(KeyError::new(key, unknown_key_message(key))),
         }
         self.check_key(key)

@@ -291,7 +291,7 @@ fn search_wavenumber<M: EnergyModel>(
         };
         progress.evaluation(count, &detail);
     };
-    let fail = |e: wrinkle_runtime::solve::SolveError| {
+    let fail = |e: String| {
         Error::Solver(format!(
             "wavenumber search of `{}` over Q in [{:.3e}, {:.3e}] 1/mm (wavelengths from {:.3e} to {:.3e} mm): {e}. \
              Hint: check that the load compresses the sheet and that the thickness and tension are physical",
@@ -302,38 +302,11 @@ fn search_wavenumber<M: EnergyModel>(
             2.0 * PI / range.0
         ))
     };
-    let search = match coarse_scene(scene) {
-        None => minimise_critical_load(problem, factor, &options, &mut observer).map_err(fail)?,
-        Some(coarse) => {
-            // Global scan on the coarse mesh, then a local refinement on the real one.
-            let mut coarse_problem = build_problem(&coarse, problem.assembler.model().clone())?;
-            let mut coarse_factor = analyse(&coarse_problem)?;
-            let coarse_options = WavenumberSearchOptions {
-                relative_tolerance: COARSE_RELATIVE_TOLERANCE,
-                ..options.clone()
-            };
-            let first = minimise_critical_load(
-                &mut coarse_problem,
-                &mut coarse_factor,
-                &coarse_options,
-                &mut observer,
-            )
-            .map_err(fail)?;
-            let q = first.parameter;
-            let local = WavenumberSearchOptions {
-                range: (q / LOCAL_BRACKET, q * LOCAL_BRACKET),
-                scan_points: 3,
-                relative_tolerance: FINE_RELATIVE_TOLERANCE,
-                ..options.clone()
-            };
-            let mut fine =
-                minimise_critical_load(problem, factor, &local, &mut observer).map_err(fail)?;
-            let mut evaluations = first.evaluations;
-            evaluations.append(&mut fine.evaluations);
-            fine.evaluations = evaluations;
-            fine
-        }
-    };
+    let search =
+        two_level_search(scene, problem, factor, &options, &mut observer).map_err(|e| match e {
+            Error::Solver(message) => fail(message),
+            other => other,
+        })?;
     progress.finish(&format!(
         "Q = {:.6e}/mm, λ_c = {:.6e}",
         search.parameter, search.buckling.critical_loads[0]
@@ -360,6 +333,50 @@ fn search_wavenumber<M: EnergyModel>(
     let ellipticity = ellipticity_at_critical_load(problem, &buckling, 0.0);
     let outcome = (buckling, ellipticity, q, search.evaluations);
     Ok((outcome, "auto (reference-envelope)".into()))
+}
+
+/// The global search on a half mesh, then the local refinement on `problem` (module
+/// documentation); on the problem itself when its mesh is already coarse.
+fn two_level_search<M: EnergyModel>(
+    scene: &Scene,
+    problem: &mut Problem<M>,
+    factor: &mut SparseFactorization,
+    options: &WavenumberSearchOptions,
+    observer: &mut dyn FnMut(&WavenumberEvaluation),
+) -> Result<wrinkle_runtime::solve::wavenumber::WavenumberSearch, Error> {
+    let solve_error = |e: wrinkle_runtime::solve::SolveError| Error::Solver(e.to_string());
+    Ok(match coarse_scene(scene) {
+        None => minimise_critical_load(problem, factor, options, observer).map_err(solve_error)?,
+        Some(coarse) => {
+            // Global scan on the coarse mesh, then a local refinement on the real one.
+            let mut coarse_problem = build_problem(&coarse, problem.assembler.model().clone())?;
+            let mut coarse_factor = analyse(&coarse_problem)?;
+            let coarse_options = WavenumberSearchOptions {
+                relative_tolerance: COARSE_RELATIVE_TOLERANCE,
+                ..options.clone()
+            };
+            let first = minimise_critical_load(
+                &mut coarse_problem,
+                &mut coarse_factor,
+                &coarse_options,
+                observer,
+            )
+            .map_err(solve_error)?;
+            let q = first.parameter;
+            let local = WavenumberSearchOptions {
+                range: (q / LOCAL_BRACKET, q * LOCAL_BRACKET),
+                scan_points: 3,
+                relative_tolerance: FINE_RELATIVE_TOLERANCE,
+                ..options.clone()
+            };
+            let mut fine =
+                minimise_critical_load(problem, factor, &local, observer).map_err(solve_error)?;
+            let mut evaluations = first.evaluations;
+            evaluations.append(&mut fine.evaluations);
+            fine.evaluations = evaluations;
+            fine
+        }
+    })
 }
 
 struct ReferenceQ<'a> {

@@ -3,6 +3,7 @@
 //! shift-invert Lanczos solver of the linear buckling eigenproblem.
 
 pub mod eigen;
+pub mod error;
 pub mod factor;
 pub mod pattern;
 

@@ -4,7 +4,7 @@ use std::sync::Arc;
 
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 
-use super::factor::LinearError;
+use super::error::LinearError;
 
 /// Symmetric sparsity pattern of an $`n \times n`$ matrix in compressed sparse column (CSC) form.
 ///

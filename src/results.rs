@@ -1,0 +1,72 @@
+//! What a run produced, shared by the solver side (`run`) and the writers (`run_outputs`),
+//! so that neither imports the other.
+
+use crate::output::PathPoint;
+use std::path::PathBuf;
+use wrinkle_runtime::solve::anm::AnmStep;
+use wrinkle_runtime::solve::ellipticity::EllipticityReport;
+use wrinkle_runtime::solve::path::PathResult;
+
+/// How a run ended, with its exit code (table in `docs/outputs.md`).
+#[derive(Clone, Debug, PartialEq)]
+pub enum RunOutcome {
+    /// The amplitude target was reached (exit 0).
+    Reached,
+    /// A solver failed; every point computed before was written (exit 1).
+    Failed(String),
+    /// The path stopped before the target: `max_steps`, `max_load`, or never wrinkled (exit 3).
+    Incomplete(String),
+    /// The target was reached but a validity check failed (exit 4).
+    Invalid(String),
+}
+
+impl RunOutcome {
+    /// Process exit code of this outcome.
+    pub fn exit_code(&self) -> i32 {
+        match self {
+            RunOutcome::Reached => 0,
+            RunOutcome::Failed(_) => 1,
+            RunOutcome::Incomplete(_) => 3,
+            RunOutcome::Invalid(_) => 4,
+        }
+    }
+}
+
+/// What `run` produced (also written to `summary.json`).
+#[derive(Debug)]
+pub struct RunReport {
+    /// The summary object.
+    pub summary: serde_json::Value,
+    /// Files written.
+    pub files: Vec<PathBuf>,
+    /// The solver failure, if the path ended by one.
+    pub failure: Option<String>,
+    /// How the run ended.
+    pub outcome: RunOutcome,
+}
+
+/// Displacement snapshots along the path for the profile plots and VTU requests.
+pub struct Snap {
+    /// Load.
+    pub load: f64,
+    /// Nodal values of the whole mesh.
+    pub values: Vec<f64>,
+}
+
+/// Everything the outputs need from the path.
+pub struct Trace {
+    /// Path points (dense output included).
+    pub points: Vec<PathPoint>,
+    /// The solver's result.
+    pub result: PathResult,
+    /// ANM steps (empty for Riks).
+    pub anm_steps: Vec<AnmStep>,
+    /// First step end where strong ellipticity failed, with the report.
+    pub loss_of_ellipticity: Option<(f64, EllipticityReport)>,
+    /// States at increasing amplitude levels (profile plots).
+    pub profiles: Vec<Snap>,
+    /// States interpolated at the requested `output.vtu_loads`.
+    pub requested: Vec<Snap>,
+    /// Last state (nodal values of the whole mesh).
+    pub last: Snap,
+}
