@@ -592,13 +592,20 @@ fn validity_warnings(
         });
     }
     if let (Some(l), false) = (threshold.wavelength, layout.is_envelope()) {
-        let element = scene.geometry.length_x / scene.mesh.elements_x as f64;
+        // Element size along the wave direction (X, or Y for waves along Y as in the strip).
+        let theta = scene.model.direction_degrees.to_radians();
+        let (element, axis) = if theta.sin().abs() > theta.cos().abs() {
+            (scene.geometry.length_y / scene.mesh.elements_y as f64, "Y")
+        } else {
+            (scene.geometry.length_x / scene.mesh.elements_x as f64, "X")
+        };
         let per_wavelength = l / element;
         if per_wavelength < MIN_ELEMENTS_PER_WAVELENGTH {
             warnings.push(ValidityWarning {
                 check: "mode_resolution",
                 message: format!(
-                    "{per_wavelength:.1} elements per wavelength ({l:.4e} mm) along X: the plate's mode is not resolved (at least {MIN_ELEMENTS_PER_WAVELENGTH}; refine mesh.nx)"
+                    "{per_wavelength:.1} elements per wavelength ({l:.4e} mm) along {axis}: the plate's mode is not resolved (at least {MIN_ELEMENTS_PER_WAVELENGTH}; refine mesh.n{})",
+                    axis.to_lowercase()
                 ),
             });
         }
