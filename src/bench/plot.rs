@@ -257,11 +257,20 @@ fn decades(values: impl Iterator<Item = f64>) -> (f64, f64) {
     (10f64.powf(low), 10f64.powf(high))
 }
 
-/// Tick text on a log axis: plain decimals between 0.01 and 10⁴, else `1e-5` style.
-fn log_tick(value: f64) -> String {
+/// Tick text of the time axis: plain decimals between 0.01 and 10⁴, else `1e-5` style.
+fn time_tick(value: f64) -> String {
     if (1e-2..1e4).contains(&value) {
         let decimals = (-value.log10().floor()).max(0.0) as usize;
         format!("{value:.decimals$}")
+    } else {
+        format!("{value:.0e}")
+    }
+}
+
+/// Tick text of the error axis: `1e-5` style, `1` for one.
+fn error_tick(value: f64) -> String {
+    if (value - 1.0).abs() < 1e-12 {
+        "1".to_string()
     } else {
         format!("{value:.0e}")
     }
@@ -349,8 +358,8 @@ impl Figure {
             .axis_style(RGBColor(60, 60, 60).stroke_width(scale.round() as u32))
             .x_labels(6)
             .y_labels(8)
-            .x_label_formatter(&|v| log_tick(*v))
-            .y_label_formatter(&|v| log_tick(*v))
+            .x_label_formatter(&|v| time_tick(*v))
+            .y_label_formatter(&|v| error_tick(*v))
             .draw()?;
         for series in &panel.series {
             let mut points = series.points.clone();
@@ -367,7 +376,8 @@ impl Figure {
                         .map(|p| Circle::new((p.0, p.1), px(4.5), series.color.filled())),
                 )?;
             }
-            chart.draw_series(points.iter().map(|p| {
+            let tags = points.iter().filter(|_| !series.dashed);
+            chart.draw_series(tags.map(|p| {
                 Text::new(
                     p.2.clone(),
                     (p.0, p.1),
