@@ -39,7 +39,7 @@ const COLORS: [RGBColor; 8] = [
 ];
 const CLOSED_FORM_COLOR: RGBColor = RGBColor(60, 60, 60);
 
-/// One polyline of `(time, error)` points with a tag per point.
+/// One polyline of `(time, error)` points with a tag per point, in the order of the sweep.
 struct Series {
     label: String,
     color: RGBColor,
@@ -362,8 +362,9 @@ impl Figure {
             .y_label_formatter(&|v| error_tick(*v))
             .draw()?;
         for series in &panel.series {
-            let mut points = series.points.clone();
-            points.sort_by(|a, b| a.0.total_cmp(&b.0));
+            // In the order of the sweep (coarse to fine, low to high order, loose to tight), so
+            // the line shows what each step of the setting buys and costs.
+            let points = &series.points;
             let style = series.color.stroke_width((2.5 * scale).round() as u32);
             let line: Vec<(f64, f64)> = points.iter().map(|p| (p.0, p.1)).collect();
             if series.dashed {
