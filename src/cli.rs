@@ -71,6 +71,23 @@ pub enum Command {
         #[arg(long, short)]
         quiet: bool,
     },
+    /// Run time against error: sweeps of mesh, ANM order and series tolerance, each point's
+    /// errors against a converged reference of the same model (`bench.csv`, `bench.json`,
+    /// `bench.png`). See docs/benchmarks.md.
+    Bench {
+        /// Scene and overrides.
+        #[command(flatten)]
+        scene: SceneArguments,
+        /// Comma-separated model names (default: reference-envelope).
+        #[arg(long, value_delimiter = ',')]
+        models: Vec<String>,
+        /// Output directory.
+        #[arg(long, value_name = "DIR", default_value = "out/bench")]
+        out: PathBuf,
+        /// Reduced sweep: coarse meshes, two or three points per sweep.
+        #[arg(long)]
+        quick: bool,
+    },
     /// Closed forms of the clamped rectangle in biaxial load (THEORY.md §8): exact minimum of
     /// (42), approximations (44) and (96), Galerkin integrals, amplitude law (61)–(62) and a
     /// converged multi-term Galerkin solution of (55). See docs/analytic.md.
@@ -192,6 +209,18 @@ pub fn execute(command: &Command) -> Result<(), Error> {
                 crate::threshold::load_unit(&scene),
             ))?;
             eprintln!("comparison in {}", directory.display());
+            Ok(())
+        }
+        Command::Bench {
+            scene,
+            models,
+            out,
+            quick,
+        } => {
+            let scene = scene.resolve()?;
+            let bench = crate::bench::bench(&scene, models, *quick, out)?;
+            print_stdout(&crate::bench::bench_table(&bench))?;
+            eprintln!("benchmark in {}", out.display());
             Ok(())
         }
         Command::Analytic {

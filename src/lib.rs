@@ -10,6 +10,7 @@
 //! scenes to the physics, and [`cli`] is the command-line interface of the `wrinkle` binary.
 
 pub mod analytic;
+pub mod bench;
 pub mod cli;
 pub mod closed_form;
 pub mod commands;

@@ -1,0 +1,816 @@
+//! `wrinkle bench`: run time against error.
+//!
+//! For each model the scene is run at a **reference** point — the finest mesh of the plan, the
+//! highest ANM order $`N`$ and the tightest series tolerance $`\varepsilon`$ — and then along three
+//! one-factor sweeps around it: the mesh (at the reference's $`N`$ and $`\varepsilon`$), the
+//! order (at the reference mesh and $`\varepsilon`$) and the series tolerance (at the reference
+//! mesh and $`N`$). Every point is a whole [`crate::run::run`] (threshold search, imperfection,
+//! path to the amplitude target [`TARGET_AMPLITUDE`]); its wall times are read from the run's
+//! `summary.json` (`timings.threshold`, `timings.path`, `timings.total`), and three results
+//! are compared with the reference of the **same** model:
+//!
+//! * the critical load $`\lambda_c`$ of linear buckling;
+//! * the load $`\lambda_{a/h=1}`$ at which the maximum physical amplitude first reaches one
+//!   thickness ([`load_at_amplitude`]);
+//! * the maximum physical amplitude $`a/h`$ at $`\lambda/\lambda_c = 1.1`$ (the point's own
+//!   $`\lambda_c`$) ([`amplitude_at_load`]);
+//!
+//! both interpolated by a cubic through the path points around the crossing
+//! ([`value_at_crossing`]).
+//!
+//! Errors are relative, $`\lvert x - x_\text{ref}\rvert / \lvert x_\text{ref}\rvert`$
+//! ([`relative_error`]). Where the scene is the clamped biaxial rectangle, $`\lambda_c`$ is also
+//! compared with the exact minimum of eq. (42) ([`closed_form_threshold`]), an independent truth.
+//! The order and tolerance sweeps reuse the reference's wavenumber (`model.wavenumber` fixed to
+//! it) when the scene asks for `auto`: their threshold is then one buckling analysis instead of a
+//! search, and their $`\lambda_c`$ equals the reference's.
+//!
+//! Outputs (`docs/benchmarks.md`): `bench.csv`, `bench.json`, `bench.png|svg` (error against
+//! total time, log–log, one series per sweep), and each point's run directory under
+//! `runs/MODEL/`.
+
+mod plot;
+
+use crate::Error;
+use crate::output::{PathPoint, write_bytes_atomically, write_json};
+use crate::run::{RunOutcome, run};
+use crate::scene::{Scene, Wavenumber};
+use crate::threshold::{closed_form_threshold, load_unit};
+use serde_json::json;
+use std::path::Path;
+use std::time::Instant;
+
+/// Model benchmarked when `--models` is not given.
+pub const DEFAULT_MODEL: &str = "reference-envelope";
+/// Physical amplitude $`a/h`$ at which the load is compared.
+pub const AMPLITUDE_LEVEL: f64 = 1.0;
+/// Load ratio $`\lambda/\lambda_c`$ at which the amplitude is compared.
+pub const LOAD_RATIO: f64 = 1.1;
+/// Amplitude target $`a/h`$ of every point (`solver.max_amplitude_over_h`): past
+/// [`AMPLITUDE_LEVEL`] and past $`\lambda = 1.1\lambda_c`$ on the paper's example 1.
+pub const TARGET_AMPLITUDE: f64 = 2.0;
+
+/// The columns of `bench.csv`, in order.
+pub const CSV_COLUMNS: [&str; 22] = [
+    "model",
+    "sweep",
+    "outcome",
+    "nx",
+    "ny",
+    "dofs",
+    "order",
+    "series_tolerance",
+    "wavenumber",
+    "wavenumber_fixed",
+    "steps",
+    "factorizations",
+    "time_threshold",
+    "time_path",
+    "time_total",
+    "critical_load",
+    "error_critical_load",
+    "error_critical_load_closed_form",
+    "load_at_amplitude_1",
+    "error_load_at_amplitude_1",
+    "amplitude_at_1_1",
+    "error_amplitude_at_1_1",
+];
+
+/// Which sweep a point belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Sweep {
+    /// The reference point itself (finest mesh, highest order, tightest tolerance).
+    Reference,
+    /// Mesh refinement at the reference's order and tolerance.
+    Mesh,
+    /// ANM order at the reference mesh and tolerance.
+    Order,
+    /// Series tolerance at the reference mesh and order.
+    Tolerance,
+}
+
+impl Sweep {
+    /// Name in the CSV and JSON files.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Sweep::Reference => "reference",
+            Sweep::Mesh => "mesh",
+            Sweep::Order => "order",
+            Sweep::Tolerance => "tolerance",
+        }
+    }
+}
+
+/// The settings a point varies.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Settings {
+    /// Elements along X.
+    pub nx: usize,
+    /// Elements along Y.
+    pub ny: usize,
+    /// ANM truncation order $`N`$.
+    pub order: usize,
+    /// Series tolerance $`\varepsilon`$ of the step length.
+    pub series_tolerance: f64,
+}
+
+/// The sweeps of one model.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Plan {
+    /// Meshes `(nx, ny)`, coarse to fine; the last is the reference mesh.
+    pub meshes: Vec<(usize, usize)>,
+    /// ANM orders, increasing; the last is the reference's.
+    pub orders: Vec<usize>,
+    /// Series tolerances, decreasing; the last is the reference's.
+    pub tolerances: Vec<f64>,
+}
+
+impl Plan {
+    /// The plan of `model`: the plate must resolve about 15 wavelengths along X (8 Q8 elements
+    /// each for the `mode_resolution` check), envelope models only the envelope.
+    pub fn for_model(model: &str, quick: bool) -> Plan {
+        let plate = model == "fvk-plate";
+        let meshes = match (plate, quick) {
+            (false, false) => vec![(8, 4), (16, 8), (32, 16), (64, 32)],
+            (false, true) => vec![(8, 4), (12, 6), (16, 8)],
+            (true, false) => vec![(64, 16), (96, 24), (128, 32)],
+            (true, true) => vec![(32, 8), (48, 12), (64, 16)],
+        };
+        let (orders, tolerances) = if quick {
+            (vec![12, 20], vec![1e-5, 1e-7])
+        } else {
+            (
+                vec![8, 12, 16, 20, 30],
+                vec![1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9],
+            )
+        };
+        Plan {
+            meshes,
+            orders,
+            tolerances,
+        }
+    }
+
+    /// Finest mesh, highest order, tightest tolerance.
+    pub fn reference(&self) -> Settings {
+        let (nx, ny) = self.meshes.last().copied().unwrap_or((32, 16));
+        Settings {
+            nx,
+            ny,
+            order: self.orders.iter().copied().max().unwrap_or(20),
+            series_tolerance: self.tolerances.iter().copied().fold(1e-7, f64::min),
+        }
+    }
+
+    /// Every point but the reference: the mesh, order and tolerance sweeps, in that order.
+    pub fn points(&self) -> Vec<(Sweep, Settings)> {
+        let reference = self.reference();
+        let meshes = self.meshes.iter().map(|&(nx, ny)| {
+            let settings = Settings {
+                nx,
+                ny,
+                ..reference
+            };
+            (Sweep::Mesh, settings)
+        });
+        let orders = self.orders.iter().map(|&order| {
+            let settings = Settings { order, ..reference };
+            (Sweep::Order, settings)
+        });
+        let tolerances = self.tolerances.iter().map(|&series_tolerance| {
+            let settings = Settings {
+                series_tolerance,
+                ..reference
+            };
+            (Sweep::Tolerance, settings)
+        });
+        meshes
+            .chain(orders)
+            .chain(tolerances)
+            .filter(|(_, settings)| *settings != reference)
+            .collect()
+    }
+}
+
+/// One point of the benchmark: its settings, cost, results and errors. Result and error
+/// columns are `None` (empty in the CSV) when the run failed, stopped early or did not reach
+/// the level; cost columns are kept whenever the run produced a summary.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct BenchRow {
+    /// Model name.
+    pub model: String,
+    /// Which sweep.
+    pub sweep: Sweep,
+    /// `reached`, `invalid` (a validity check failed; numbers kept), `incomplete`, `failed`
+    /// or `error` (the run could not start).
+    pub outcome: String,
+    /// Why the run did not reach its target, if it did not.
+    pub reason: Option<String>,
+    /// Settings of the point.
+    #[serde(flatten)]
+    pub settings: SettingsRecord,
+    /// Free unknowns.
+    pub dofs: Option<usize>,
+    /// Wavenumber $`Q`$ (1/mm) of envelope models.
+    pub wavenumber: Option<f64>,
+    /// Whether $`Q`$ was fixed to the reference's instead of searched.
+    pub wavenumber_fixed: bool,
+    /// Accepted solver steps.
+    pub steps: Option<usize>,
+    /// Factorisations of the tangent along the path.
+    pub factorizations: Option<usize>,
+    /// Wall time of the threshold (buckling and wavenumber search), s.
+    pub time_threshold: Option<f64>,
+    /// Wall time of the path following, s.
+    pub time_path: Option<f64>,
+    /// Wall time of the whole run (without writing files), s.
+    pub time_total: Option<f64>,
+    /// What the point measured.
+    #[serde(flatten)]
+    pub measured: Measurement,
+    /// Relative errors against the reference.
+    #[serde(flatten)]
+    pub errors: Errors,
+}
+
+/// [`Settings`] as serialised into a row.
+#[derive(Clone, Copy, Debug, serde::Serialize)]
+pub struct SettingsRecord {
+    /// Elements along X.
+    pub nx: usize,
+    /// Elements along Y.
+    pub ny: usize,
+    /// ANM order.
+    pub order: usize,
+    /// Series tolerance.
+    pub series_tolerance: f64,
+}
+
+/// The three results of a point.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct Measurement {
+    /// $`\lambda_c`$ (as λ).
+    pub critical_load: Option<f64>,
+    /// $`\lambda`$ where the maximum $`a/h`$ first reaches [`AMPLITUDE_LEVEL`].
+    pub load_at_amplitude_1: Option<f64>,
+    /// Maximum $`a/h`$ at $`\lambda = `$ [`LOAD_RATIO`] $`\lambda_c`$.
+    pub amplitude_at_1_1: Option<f64>,
+}
+
+/// Relative errors of a [`Measurement`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct Errors {
+    /// Of $`\lambda_c`$ against the reference.
+    pub error_critical_load: Option<f64>,
+    /// Of $`\lambda_c`$ against the exact minimum of eq. (42), where it applies.
+    pub error_critical_load_closed_form: Option<f64>,
+    /// Of $`\lambda_{a/h=1}`$ against the reference.
+    pub error_load_at_amplitude_1: Option<f64>,
+    /// Of $`a/h`$ at $`1.1\lambda_c`$ against the reference.
+    pub error_amplitude_at_1_1: Option<f64>,
+}
+
+/// The whole benchmark.
+#[derive(Clone, Debug)]
+pub struct Bench {
+    /// Rows, model by model: reference, mesh, order, tolerance.
+    pub rows: Vec<BenchRow>,
+    /// Exact minimum of eq. (42) when the scene is the clamped biaxial rectangle.
+    pub closed_form_critical_load: Option<f64>,
+    /// Unit of the load λ.
+    pub load_unit: &'static str,
+    /// Reduced sweep.
+    pub quick: bool,
+}
+
+/// $`\lvert x - x_\text{ref}\rvert / \lvert x_\text{ref}\rvert`$; `None` when either is missing,
+/// not finite, or the reference is zero.
+pub fn relative_error(value: Option<f64>, reference: Option<f64>) -> Option<f64> {
+    let (x, r) = (value?, reference?);
+    let error = (x - r).abs() / r.abs();
+    (x.is_finite() && r != 0.0 && error.is_finite()).then_some(error)
+}
+
+/// Where `x` first reaches `target` along `samples` (pairs $`(x, y)`$ in path order), the
+/// value of $`y`$ there: the cubic (Lagrange) through the two samples on either side of the
+/// crossing, skipping samples that repeat an abscissa (the end of one step is the start of the
+/// next); linear between the two around the crossing when there are not four. The path's dense
+/// output is a few points per step along a curved response, so linear interpolation alone adds
+/// an error (about $`10^{-4}`$ in $`a/h`$ at $`1.1\lambda_c`$) larger than the solver's.
+pub fn value_at_crossing(samples: &[(f64, f64)], target: f64) -> Option<f64> {
+    let i = samples
+        .windows(2)
+        .position(|pair| pair[0].0 < target && pair[1].0 >= target)?;
+    let (a, b) = (samples[i], samples[i + 1]);
+    let linear = a.1 + (target - a.0) / (b.0 - a.0) * (b.1 - a.1);
+    let mut before = vec![a];
+    for &sample in samples[..i].iter().rev() {
+        if before.len() == 2 {
+            break;
+        }
+        if sample.0 < before[before.len() - 1].0 {
+            before.push(sample);
+        }
+    }
+    let mut nodes: Vec<(f64, f64)> = before.into_iter().rev().collect();
+    nodes.push(b);
+    for &sample in &samples[i + 2..] {
+        if nodes.len() == 4 {
+            break;
+        }
+        if sample.0 > nodes[nodes.len() - 1].0 {
+            nodes.push(sample);
+        }
+    }
+    if nodes.len() < 4 {
+        return Some(linear);
+    }
+    let cubic: f64 = nodes
+        .iter()
+        .enumerate()
+        .map(|(j, &(xj, yj))| {
+            let basis: f64 = nodes
+                .iter()
+                .enumerate()
+                .filter(|&(k, _)| k != j)
+                .map(|(_, &(xk, _))| (target - xk) / (xj - xk))
+                .product();
+            yj * basis
+        })
+        .sum();
+    Some(if cubic.is_finite() { cubic } else { linear })
+}
+
+/// Maximum physical $`a/h`$ where the path first reaches the load `load`
+/// ([`value_at_crossing`]); `None` if the path stops before.
+pub fn amplitude_at_load(points: &[PathPoint], load: f64) -> Option<f64> {
+    let samples: Vec<(f64, f64)> = points
+        .iter()
+        .map(|p| (p.lambda, p.max_amplitude_over_h))
+        .collect();
+    value_at_crossing(&samples, load)
+}
+
+/// Load where the maximum physical $`a/h`$ first reaches `amplitude` ([`value_at_crossing`];
+/// [`crate::compare::load_at_amplitude`] is its linear counterpart); `None` if never.
+pub fn load_at_amplitude(points: &[PathPoint], amplitude: f64) -> Option<f64> {
+    let samples: Vec<(f64, f64)> = points
+        .iter()
+        .map(|p| (p.max_amplitude_over_h, p.lambda))
+        .collect();
+    value_at_crossing(&samples, amplitude)
+}
+
+/// The three results read from a run's `summary.json`.
+pub fn measure(summary: &serde_json::Value) -> Measurement {
+    let points: Vec<PathPoint> =
+        serde_json::from_value(summary["path"].clone()).unwrap_or_default();
+    let critical_load = summary["linear_buckling_load"]
+        .as_f64()
+        .filter(|l| l.is_finite());
+    Measurement {
+        critical_load,
+        load_at_amplitude_1: load_at_amplitude(&points, AMPLITUDE_LEVEL),
+        amplitude_at_1_1: critical_load.and_then(|l| amplitude_at_load(&points, LOAD_RATIO * l)),
+    }
+}
+
+/// Runs the benchmark of `scene` for `models` (default [`DEFAULT_MODEL`]) into `directory`
+/// and writes `bench.csv`, `bench.json` and `bench.png|svg`. Progress goes to standard error.
+pub fn bench(
+    scene: &Scene,
+    models: &[String],
+    quick: bool,
+    directory: &Path,
+) -> Result<Bench, Error> {
+    let models: Vec<String> = if models.is_empty() {
+        vec![DEFAULT_MODEL.to_string()]
+    } else {
+        models.to_vec()
+    };
+    let known = wrinkle_models::names();
+    if let Some(unknown) = models.iter().find(|m| !known.contains(&m.as_str())) {
+        return Err(Error::Usage(format!(
+            "unknown model `{unknown}` (models: {})",
+            known.join(", ")
+        )));
+    }
+    let closed_form = closed_form_threshold(scene).map(|(load, _)| load);
+    let total: usize = models
+        .iter()
+        .map(|m| 1 + Plan::for_model(m, quick).points().len())
+        .sum();
+    let mut progress = Counter { done: 0, total };
+    let mut rows = Vec::new();
+    for model in &models {
+        rows.extend(bench_model(
+            scene,
+            model,
+            &Plan::for_model(model, quick),
+            directory,
+            &mut progress,
+        )?);
+    }
+    for row in &mut rows {
+        row.errors.error_critical_load_closed_form =
+            relative_error(row.measured.critical_load, closed_form);
+    }
+    let bench = Bench {
+        rows,
+        closed_form_critical_load: closed_form,
+        load_unit: load_unit(scene),
+        quick,
+    };
+    write_bench(scene, &bench, directory)?;
+    Ok(bench)
+}
+
+/// Points done and to do, for the progress lines.
+struct Counter {
+    done: usize,
+    total: usize,
+}
+
+/// The reference, then every sweep point of one model, with errors against the reference.
+fn bench_model(
+    scene: &Scene,
+    model: &str,
+    plan: &Plan,
+    directory: &Path,
+    progress: &mut Counter,
+) -> Result<Vec<BenchRow>, Error> {
+    let reference = run_point(
+        scene,
+        model,
+        (Sweep::Reference, plan.reference()),
+        None,
+        directory,
+        progress,
+    )?;
+    let fixed = match scene.model.wavenumber {
+        Wavenumber::Auto => reference.wavenumber,
+        Wavenumber::Fixed(_) => None,
+    };
+    let mut rows = vec![reference];
+    for point in plan.points() {
+        let wavenumber = fixed.filter(|_| point.0 != Sweep::Mesh);
+        rows.push(run_point(
+            scene, model, point, wavenumber, directory, progress,
+        )?);
+    }
+    let truth = rows[0].measured;
+    for row in &mut rows {
+        row.errors = Errors {
+            error_critical_load: relative_error(row.measured.critical_load, truth.critical_load),
+            error_critical_load_closed_form: None,
+            error_load_at_amplitude_1: relative_error(
+                row.measured.load_at_amplitude_1,
+                truth.load_at_amplitude_1,
+            ),
+            error_amplitude_at_1_1: relative_error(
+                row.measured.amplitude_at_1_1,
+                truth.amplitude_at_1_1,
+            ),
+        };
+    }
+    Ok(rows)
+}
+
+/// The scene of one point: its settings, the amplitude target, no plots, no VTU requests.
+fn point_scene(
+    scene: &Scene,
+    model: &str,
+    settings: Settings,
+    wavenumber: Option<f64>,
+) -> Result<Scene, Error> {
+    let mut point = scene.clone();
+    point.model.name = model.to_string();
+    if let Some(q) = wavenumber {
+        point.model.wavenumber = Wavenumber::Fixed(q);
+    }
+    point.mesh.elements_x = settings.nx;
+    point.mesh.elements_y = settings.ny;
+    point.solver.order = settings.order;
+    point.solver.series_tolerance = settings.series_tolerance;
+    point.solver.max_amplitude_over_thickness = TARGET_AMPLITUDE;
+    point.output.plots = false;
+    point.output.vtu_loads.clear();
+    point.validate()?;
+    Ok(point)
+}
+
+/// Runs one point into `directory/runs/MODEL/NAME/` and makes its row (errors not yet set).
+fn run_point(
+    scene: &Scene,
+    model: &str,
+    (sweep, settings): (Sweep, Settings),
+    wavenumber: Option<f64>,
+    directory: &Path,
+    progress: &mut Counter,
+) -> Result<BenchRow, Error> {
+    let point = point_scene(scene, model, settings, wavenumber)?;
+    let name = format!(
+        "{}-{}x{}-order{}-tol{:.0e}",
+        sweep.as_str(),
+        settings.nx,
+        settings.ny,
+        settings.order,
+        settings.series_tolerance
+    );
+    progress.done += 1;
+    let label = format!("bench [{}/{}] {model}", progress.done, progress.total);
+    eprintln!(
+        "{label} {}: {}×{}, N = {}, ε = {:.0e}{}",
+        sweep.as_str(),
+        settings.nx,
+        settings.ny,
+        settings.order,
+        settings.series_tolerance,
+        wavenumber.map_or(String::new(), |q| format!(", Q = {q:.6} fixed")),
+    );
+    let begin = Instant::now();
+    let mut row = BenchRow {
+        model: model.to_string(),
+        sweep,
+        outcome: "error".into(),
+        reason: None,
+        settings: SettingsRecord {
+            nx: settings.nx,
+            ny: settings.ny,
+            order: settings.order,
+            series_tolerance: settings.series_tolerance,
+        },
+        dofs: None,
+        wavenumber,
+        wavenumber_fixed: wavenumber.is_some(),
+        steps: None,
+        factorizations: None,
+        time_threshold: None,
+        time_path: None,
+        time_total: None,
+        measured: Measurement::default(),
+        errors: Errors::default(),
+    };
+    match run(&point, &directory.join("runs").join(model).join(name), true) {
+        Ok(report) => fill_row(&mut row, &report.summary, &report.outcome),
+        Err(error @ Error::Scene { .. }) => return Err(error),
+        Err(error) => row.reason = Some(error.to_string()),
+    }
+    eprintln!(
+        "{label}: {} in {:.1} s",
+        match &row.reason {
+            Some(reason) => format!("{}: {reason}", row.outcome),
+            None => row.outcome.clone(),
+        },
+        begin.elapsed().as_secs_f64()
+    );
+    Ok(row)
+}
+
+/// Cost and results of a run that produced a summary.
+fn fill_row(row: &mut BenchRow, summary: &serde_json::Value, outcome: &RunOutcome) {
+    let count = |value: &serde_json::Value| value.as_u64().map(|v| v as usize);
+    let seconds = |key: &str| summary["timings"][key].as_f64().filter(|t| t.is_finite());
+    row.dofs = count(&summary["dofs"]);
+    row.wavenumber = summary["wavenumber"].as_f64();
+    row.steps = count(&summary["steps"]);
+    row.factorizations = count(&summary["statistics"]["factorizations"]);
+    row.time_threshold = seconds("threshold");
+    row.time_path = seconds("path");
+    row.time_total = seconds("total");
+    let (name, reason, usable) = match outcome {
+        RunOutcome::Reached => ("reached", None, true),
+        RunOutcome::Invalid(r) => ("invalid", Some(r.clone()), true),
+        RunOutcome::Incomplete(r) => ("incomplete", Some(r.clone()), false),
+        RunOutcome::Failed(r) => ("failed", Some(r.clone()), false),
+    };
+    row.outcome = name.into();
+    row.reason = reason;
+    if usable {
+        row.measured = measure(summary);
+    }
+}
+
+fn io_error(path: &Path) -> impl FnOnce(std::io::Error) -> Error + '_ {
+    move |error| Error::Io {
+        path: path.display().to_string(),
+        error,
+    }
+}
+
+fn cell(value: Option<f64>) -> String {
+    value.map(|v| format!("{v:.10e}")).unwrap_or_default()
+}
+
+fn count_cell(value: Option<usize>) -> String {
+    value.map(|v| v.to_string()).unwrap_or_default()
+}
+
+/// `bench.csv`: a header of [`CSV_COLUMNS`] and one line per row.
+pub fn bench_csv(bench: &Bench) -> String {
+    let mut csv = CSV_COLUMNS.join(",");
+    csv.push('\n');
+    for row in &bench.rows {
+        let (m, e) = (&row.measured, &row.errors);
+        let line = [
+            row.model.clone(),
+            row.sweep.as_str().to_string(),
+            row.outcome.clone(),
+            row.settings.nx.to_string(),
+            row.settings.ny.to_string(),
+            count_cell(row.dofs),
+            row.settings.order.to_string(),
+            format!("{:e}", row.settings.series_tolerance),
+            cell(row.wavenumber),
+            row.wavenumber_fixed.to_string(),
+            count_cell(row.steps),
+            count_cell(row.factorizations),
+            cell(row.time_threshold),
+            cell(row.time_path),
+            cell(row.time_total),
+            cell(m.critical_load),
+            cell(e.error_critical_load),
+            cell(e.error_critical_load_closed_form),
+            cell(m.load_at_amplitude_1),
+            cell(e.error_load_at_amplitude_1),
+            cell(m.amplitude_at_1_1),
+            cell(e.error_amplitude_at_1_1),
+        ];
+        csv.push_str(&line.join(","));
+        csv.push('\n');
+    }
+    csv
+}
+
+/// `bench.csv`, `bench.json` and `bench.png|svg` into `directory`.
+fn write_bench(scene: &Scene, bench: &Bench, directory: &Path) -> Result<(), Error> {
+    std::fs::create_dir_all(directory).map_err(io_error(directory))?;
+    let path = directory.join("bench.csv");
+    write_bytes_atomically(&path, bench_csv(bench).as_bytes()).map_err(io_error(&path))?;
+    let references: Vec<_> = bench
+        .rows
+        .iter()
+        .filter(|r| r.sweep == Sweep::Reference)
+        .map(|r| {
+            json!({
+                "model": r.model, "nx": r.settings.nx, "ny": r.settings.ny,
+                "order": r.settings.order, "series_tolerance": r.settings.series_tolerance,
+                "wavenumber": r.wavenumber, "outcome": r.outcome,
+                "critical_load": r.measured.critical_load,
+                "load_at_amplitude_1": r.measured.load_at_amplitude_1,
+                "amplitude_at_1_1": r.measured.amplitude_at_1_1,
+            })
+        })
+        .collect();
+    let value = json!({
+        "scene": scene.echo_json(),
+        "load_unit": bench.load_unit,
+        "quick": bench.quick,
+        "amplitude_level": AMPLITUDE_LEVEL,
+        "load_ratio": LOAD_RATIO,
+        "target_amplitude_over_h": TARGET_AMPLITUDE,
+        "closed_form_critical_load": bench.closed_form_critical_load,
+        "wavenumber_fixed_in": ["order", "tolerance"],
+        "references": references,
+        "columns": CSV_COLUMNS,
+        "rows": bench.rows,
+    });
+    let path = directory.join("bench.json");
+    write_json(&path, &value).map_err(io_error(&path))?;
+    let stem = directory.join("bench");
+    plot::plot_bench(&stem, bench).map_err(io_error(&stem))?;
+    Ok(())
+}
+
+/// The benchmark as a compact text table for the terminal.
+pub fn bench_table(bench: &Bench) -> String {
+    let mut text = format!(
+        "{:<18} {:<9} {:>7} {:>6} {:>3} {:>5} {:>5} {:>8} {:>8} {:>8} {:>9} {:>9} {:>9}  outcome\n",
+        "model",
+        "sweep",
+        "mesh",
+        "dofs",
+        "N",
+        "ε",
+        "steps",
+        "t_thr/s",
+        "t_path/s",
+        "t_tot/s",
+        "err λ_c",
+        "err λ(1)",
+        "err a(1.1)"
+    );
+    let time = |t: Option<f64>| t.map_or("—".to_string(), |t| format!("{t:.2}"));
+    let error = |e: Option<f64>| e.map_or("—".to_string(), |e| format!("{e:.2e}"));
+    for row in &bench.rows {
+        text.push_str(&format!(
+            "{:<18} {:<9} {:>7} {:>6} {:>3} {:>5.0e} {:>5} {:>8} {:>8} {:>8} {:>9} {:>9} {:>9}  {}\n",
+            row.model,
+            row.sweep.as_str(),
+            format!("{}×{}", row.settings.nx, row.settings.ny),
+            row.dofs.map_or("—".into(), |d| d.to_string()),
+            row.settings.order,
+            row.settings.series_tolerance,
+            row.steps.map_or("—".into(), |s| s.to_string()),
+            time(row.time_threshold),
+            time(row.time_path),
+            time(row.time_total),
+            error(row.errors.error_critical_load),
+            error(row.errors.error_load_at_amplitude_1),
+            error(row.errors.error_amplitude_at_1_1),
+            match &row.reason {
+                Some(reason) => format!("{}: {reason}", row.outcome),
+                None => row.outcome.clone(),
+            }
+        ));
+    }
+    for row in bench.rows.iter().filter(|r| r.sweep == Sweep::Reference) {
+        let m = &row.measured;
+        let value = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.8e}"));
+        text.push_str(&format!(
+            "reference {}: {}×{}, N = {}, ε = {:.0e}: λ_c = {}, λ(a/h=1) = {}, a/h(1.1 λ_c) = {}\n",
+            row.model,
+            row.settings.nx,
+            row.settings.ny,
+            row.settings.order,
+            row.settings.series_tolerance,
+            value(m.critical_load),
+            value(m.load_at_amplitude_1),
+            value(m.amplitude_at_1_1),
+        ));
+        if let Some(l) = bench.closed_form_critical_load {
+            text.push_str(&format!(
+                "closed form (42): λ_c = {l:.8e} {}, reference off by {}\n",
+                bench.load_unit,
+                error(row.errors.error_critical_load_closed_form)
+            ));
+        }
+    }
+    text.push_str("order and tolerance sweeps: wavenumber fixed to the reference's\n");
+    text
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn point(lambda: f64, amplitude: f64) -> PathPoint {
+        PathPoint {
+            step: 0,
+            interior: false,
+            lambda,
+            n_x: None,
+            max_amplitude: amplitude,
+            max_amplitude_over_h: amplitude,
+            centre_amplitude_over_h: amplitude,
+            residual: 0.0,
+            elliptic: true,
+            closed_form_amplitude_over_h: None,
+        }
+    }
+
+    #[test]
+    fn amplitude_is_interpolated_at_the_first_crossing() {
+        let path = [point(0.0, 0.0), point(1.0, 0.5), point(2.0, 1.5)];
+        assert_eq!(amplitude_at_load(&path, 1.5), Some(1.0));
+        assert_eq!(amplitude_at_load(&path, 3.0), None);
+        assert_eq!(load_at_amplitude(&path, 1.0), Some(1.5));
+    }
+
+    /// A cubic response is reproduced exactly, even with a repeated step end in the samples;
+    /// linear interpolation of the same samples is off by about 0.03.
+    #[test]
+    fn cubic_interpolation_reproduces_a_cubic() {
+        let f = |x: f64| 0.2 + x - 0.7 * x * x + 0.3 * x * x * x;
+        let xs = [0.0, 0.5, 1.0, 1.0, 1.6, 2.0, 2.5];
+        let samples: Vec<(f64, f64)> = xs.iter().map(|&x| (x, f(x))).collect();
+        let value = value_at_crossing(&samples, 1.3).unwrap();
+        assert!((value - f(1.3)).abs() < 1e-12, "{value} vs {}", f(1.3));
+        let linear = f(1.0) + 0.5 * (f(1.6) - f(1.0));
+        assert!((linear - f(1.3)).abs() > 1e-2);
+    }
+
+    #[test]
+    fn relative_errors_are_finite_or_absent() {
+        assert_eq!(
+            relative_error(Some(1.1), Some(1.0)).map(|e| (e * 1e6).round()),
+            Some(1e5)
+        );
+        assert_eq!(relative_error(Some(1.0), Some(0.0)), None);
+        assert_eq!(relative_error(None, Some(1.0)), None);
+        assert_eq!(relative_error(Some(f64::NAN), Some(1.0)), None);
+    }
+
+    #[test]
+    fn the_reference_is_the_finest_and_tightest_and_is_not_repeated() {
+        let plan = Plan::for_model(DEFAULT_MODEL, false);
+        let reference = plan.reference();
+        assert_eq!((reference.nx, reference.ny), (64, 32));
+        assert_eq!(reference.order, 30);
+        assert_eq!(reference.series_tolerance, 1e-9);
+        let points = plan.points();
+        assert_eq!(points.len(), 3 + 4 + 5);
+        assert!(points.iter().all(|(_, s)| *s != reference));
+    }
+}

@@ -1,0 +1,136 @@
+//! `wrinkle bench --quick` on the built-in scene (the paper's example 1, reference envelope):
+//! the files of docs/benchmarks.md exist, the CSV has the documented columns, every error is
+//! finite and non-negative, the reference row has zero error, and — an independent truth — the
+//! error in $`\lambda_c`$ falls monotonically as the mesh is refined (mesh convergence).
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+const COLUMNS: [&str; 22] = [
+    "model",
+    "sweep",
+    "outcome",
+    "nx",
+    "ny",
+    "dofs",
+    "order",
+    "series_tolerance",
+    "wavenumber",
+    "wavenumber_fixed",
+    "steps",
+    "factorizations",
+    "time_threshold",
+    "time_path",
+    "time_total",
+    "critical_load",
+    "error_critical_load",
+    "error_critical_load_closed_form",
+    "load_at_amplitude_1",
+    "error_load_at_amplitude_1",
+    "amplitude_at_1_1",
+    "error_amplitude_at_1_1",
+];
+
+const ERRORS: [&str; 4] = [
+    "error_critical_load",
+    "error_critical_load_closed_form",
+    "error_load_at_amplitude_1",
+    "error_amplitude_at_1_1",
+];
+
+fn directory(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("wrinkle-test-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+/// The CSV as rows of `(column, cell)` maps.
+fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<String> = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(str::to_string)
+        .collect();
+    let rows = lines
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect();
+    (header, rows)
+}
+
+#[test]
+fn quick_bench_converges_with_the_mesh_and_measures_against_its_reference() {
+    let out = directory("bench");
+    let output = Command::new(env!("CARGO_BIN_EXE_wrinkle"))
+        .args(["bench", "--quick", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(0), "stderr:\n{stderr}");
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(stdout.contains("reference reference-envelope"), "{stdout}");
+    for file in ["bench.csv", "bench.json", "bench.png", "bench.svg"] {
+        assert!(out.join(file).is_file(), "missing {file}");
+    }
+
+    let (header, rows) = read_csv(&out.join("bench.csv"));
+    assert_eq!(header, COLUMNS);
+    let column = |name: &str| header.iter().position(|c| c == name).unwrap();
+    let number = |row: &[String], name: &str| -> Option<f64> {
+        let cell = &row[column(name)];
+        (!cell.is_empty()).then(|| cell.parse().unwrap())
+    };
+    assert!(rows.len() >= 5, "{rows:?}");
+    for row in &rows {
+        assert_eq!(row.len(), COLUMNS.len(), "{row:?}");
+        assert_eq!(row[column("outcome")], "reached", "{row:?}\n{stderr}");
+        for name in ERRORS {
+            let error = number(row, name).unwrap_or_else(|| panic!("{name} empty in {row:?}"));
+            assert!(error.is_finite() && error >= 0.0, "{name} = {error}");
+        }
+    }
+
+    let reference: Vec<_> = rows
+        .iter()
+        .filter(|r| r[column("sweep")] == "reference")
+        .collect();
+    assert_eq!(reference.len(), 1);
+    for name in [
+        "error_critical_load",
+        "error_load_at_amplitude_1",
+        "error_amplitude_at_1_1",
+    ] {
+        assert_eq!(number(reference[0], name), Some(0.0), "{name}");
+    }
+    // The closed form (42) is an independent truth: the converged reference is close to it.
+    let closed_form = number(reference[0], "error_critical_load_closed_form").unwrap();
+    assert!(closed_form < 1e-2, "reference vs eq. (42): {closed_form}");
+
+    // Mesh convergence: coarse to fine, then the reference (the finest mesh).
+    let mut mesh: Vec<(f64, f64)> = rows
+        .iter()
+        .filter(|r| r[column("sweep")] == "mesh")
+        .chain(reference.iter().copied())
+        .map(|r| {
+            (
+                number(r, "dofs").unwrap(),
+                number(r, "error_critical_load").unwrap(),
+            )
+        })
+        .collect();
+    mesh.sort_by(|a, b| a.0.total_cmp(&b.0));
+    assert!(mesh.len() >= 3, "{mesh:?}");
+    assert!(
+        mesh.windows(2).all(|pair| pair[1].1 < pair[0].1),
+        "λ_c error does not decrease with the mesh: {mesh:?}"
+    );
+
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("bench.json")).unwrap()).unwrap();
+    assert_eq!(json["rows"].as_array().unwrap().len(), rows.len());
+    assert_eq!(json["quick"], true);
+    let _ = std::fs::remove_dir_all(&out);
+}
