@@ -108,7 +108,8 @@ fn panels(bench: &Bench) -> Vec<Panel> {
     let mut critical = sweep_series(bench, |r| r.errors.error_critical_load);
     critical.retain(|s| s.label.ends_with("mesh nx×ny"));
     if bench.closed_form_critical_load.is_some() {
-        let points = bench
+        // The reference row comes first in the table: sort coarse (fast) to fine (slow).
+        let mut points: Vec<(f64, f64, String)> = bench
             .rows
             .iter()
             .filter(|r| matches!(r.sweep, Sweep::Mesh | Sweep::Reference))
@@ -121,6 +122,7 @@ fn panels(bench: &Bench) -> Vec<Panel> {
             })
             .filter(|(t, e, _)| *t > 0.0 && *e > 0.0)
             .collect();
+        points.sort_by(|a, b| a.0.total_cmp(&b.0));
         critical.push(Series {
             label: "mesh, against eq. (42)".into(),
             color: CLOSED_FORM_COLOR,
@@ -370,7 +372,12 @@ impl Figure {
             if series.dashed {
                 chart.draw_series(DashedLineSeries::new(line, px(12.0), px(7.0), style))?;
             } else {
-                chart.draw_series(LineSeries::new(line, style))?;
+                // Segment by segment: plotters mitres the joins of a wide polyline, which
+                // draws long spikes where a sweep turns back sharply.
+                chart.draw_series(
+                    line.windows(2)
+                        .map(|pair| PathElement::new(vec![pair[0], pair[1]], style)),
+                )?;
                 chart.draw_series(
                     points
                         .iter()
