@@ -19,6 +19,11 @@ pub fn buckle(scene: &Scene, quiet: bool) -> Result<Threshold, Error> {
 /// 3 incomplete, 4 validity), but only after every output computed so far was written.
 pub fn run(scene: &Scene, output_directory: &Path, quiet: bool) -> Result<RunReport, Error> {
     let report = crate::run::run(scene, output_directory, quiet)?;
+    // The summary table goes to stdout whatever the outcome (a closed stdout is not an error).
+    {
+        use std::io::Write;
+        let _ = std::io::stdout().write_all(report.summary_text.as_bytes());
+    }
     let written = format!("(outputs written to {})", output_directory.display());
     match &report.outcome {
         RunOutcome::Reached => Ok(report),

@@ -43,6 +43,8 @@ pub struct RunReport {
     pub failure: Option<String>,
     /// How the run ended.
     pub outcome: RunOutcome,
+    /// The summary table and the warnings as text (what `wrinkle run` prints at the end).
+    pub summary_text: String,
 }
 
 /// Displacement snapshots along the path for the profile plots and VTU requests.

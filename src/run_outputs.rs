@@ -127,9 +127,9 @@ pub fn write_run(
         object.insert("files".into(), json!(run_directory.files()));
     }
     files.push(summary_path);
-    eprint!("{}", summary_table.to_text());
+    let mut summary_text = summary_table.to_text();
     for warning in &report.warnings {
-        eprintln!("warning: {}: {}", warning.title, warning.detail);
+        summary_text.push_str(&format!("warning: {}: {}\n", warning.title, warning.detail));
     }
     let failure = match &outcome {
         RunOutcome::Failed(reason) => Some(reason.clone()),
@@ -140,6 +140,7 @@ pub fn write_run(
         files,
         failure,
         outcome,
+        summary_text,
     })
 }
 

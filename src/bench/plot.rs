@@ -17,7 +17,7 @@ use std::io;
 use std::path::{Path, PathBuf};
 
 /// The font of every plot (DejaVu Sans, Bitstream Vera license, `assets/fonts/`).
-static FONT_BYTES: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
+use crate::output::plots::canvas::FONT_BYTES;
 const FONT: &str = "sans-serif";
 /// The PNG is drawn this many times larger and box-filtered down (anti-aliasing).
 const SUPERSAMPLING: u32 = 3;

@@ -18,7 +18,8 @@ use std::sync::OnceLock;
 pub const SUPERSAMPLING: u32 = 3;
 
 /// The bundled font (DejaVu Sans, Bitstream Vera license, see `assets/fonts/LICENSE-DejaVu.txt`).
-static FONT_BYTES: &[u8] = include_bytes!("../../../assets/fonts/DejaVuSans.ttf");
+/// The bundled font (DejaVu Sans), shared by every plot of the crate.
+pub(crate) static FONT_BYTES: &[u8] = include_bytes!("../../../assets/fonts/DejaVuSans.ttf");
 /// Font family name under which the bundled font is registered.
 pub(crate) const FONT: &str = "sans-serif";
 

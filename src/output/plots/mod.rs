@@ -14,7 +14,7 @@
 //! (pixel rectangles of the panels and the legend, axis ranges), which tests use to check
 //! ranges and placement.
 
-mod canvas;
+pub(crate) mod canvas;
 mod map;
 mod panel;
 mod profiles;
