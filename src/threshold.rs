@@ -291,10 +291,19 @@ fn search_wavenumber<M: EnergyModel>(
         };
         progress.evaluation(count, &detail);
     };
+    let nu = scene.material.poisson_ratio;
+    let poisson_hint = if nu < -0.9 {
+        format!(
+            " With ν = {nu} the in-plane problem is nearly singular (area modulus E/(2(1−ν)) against shear modulus E/(2(1+ν)), ratio 1:{:.0}): Newton stalls at round-off; ν ≥ −0.9 is solved.",
+            (1.0 - nu) / (1.0 + nu)
+        )
+    } else {
+        String::new()
+    };
     let fail = |e: String| {
         Error::Solver(format!(
             "wavenumber search of `{}` over Q in [{:.3e}, {:.3e}] 1/mm (wavelengths from {:.3e} to {:.3e} mm): {e}. \
-             Hint: check that the load compresses the sheet and that the thickness and tension are physical",
+             Hint: check that the load compresses the sheet and that the thickness and tension are physical.{poisson_hint}",
             M::SPEC.name,
             range.0,
             range.1,

@@ -295,8 +295,12 @@ fn no_threshold_message(
             }
         }
     }
+    let first = evaluations
+        .iter()
+        .find_map(|e| e.rejected.as_deref())
+        .unwrap_or("none");
     format!(
-        "no acceptable critical load for `{}` anywhere in [{:.4e}, {:.4e}] ({} evaluations); rejections: {}",
+        "no acceptable critical load for `{}` anywhere in [{:.4e}, {:.4e}] ({} evaluations); rejections: {}; the first in full: {first}",
         options.parameter,
         options.range.0,
         options.range.1,
