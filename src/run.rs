@@ -1,10 +1,12 @@
 //! `wrinkle run`: scene → problem → threshold → imperfection → path → outputs.
 //!
 //! The problem is built **once**: the threshold (linear buckling, minimised over $`Q`$ for an
-//! envelope model with `wavenumber = "auto"`) is found on it, then the imperfection
-//! $`F = \varepsilon K_0\varphi`$ shaped like the first mode $`\varphi`$ is added to its fixed
-//! loads (the physical amplitude it gives on the unloaded sheet is `solver.perturbation`
-//! thicknesses: the same imperfection for every model), and the path is traced from the
+//! envelope model with `wavenumber = "auto"`) is found on it, then the imperfection is added to
+//! its fixed loads — for envelope models by default the paper's uniform load on the envelope,
+//! otherwise (`solver.imperfection = "mode"`, and always for the plate, where a uniform load
+//! does not excite the antisymmetric mode) $`F = \varepsilon K_0\varphi`$ shaped like the first
+//! mode $`\varphi`$, with the physical amplitude `solver.perturbation`·h on the unloaded
+//! sheet — and the path is traced from the
 //! equilibrium at $`\lambda = 0`$ with the ANM or Riks. The solver never writes files: a
 //! [`PathRecorder`] keeps what the outputs need, and [`crate::run_outputs`] writes them.
 
@@ -12,14 +14,14 @@ use crate::Error;
 use crate::output::{PathPoint, Progress, ProgressSink, ProgressTarget, Quantity};
 use crate::physics::{Layout, Snapshot};
 pub use crate::results::{RunOutcome, RunReport, Snap, Trace};
-use crate::scene::{LoadKind, PathMethod, Scene, Wavenumber};
+use crate::scene::{Imperfection, LoadKind, PathMethod, Scene, Wavenumber};
 use crate::setup::{build_problem, configure_model, layout_of, unknown_model};
 use crate::threshold::{Threshold, analyse, closed_form_threshold, find_threshold};
 use std::path::Path;
 use std::time::Instant;
 use wrinkle_models::{ModelVisitor, with_model};
 use wrinkle_runtime::EnergyModel;
-use wrinkle_runtime::fem::Mesh;
+use wrinkle_runtime::fem::{BodyLoad, LoadVectors, Mesh};
 use wrinkle_runtime::linear::factor::SparseFactorization;
 use wrinkle_runtime::problem::Problem;
 use wrinkle_runtime::solve::anm::{AnmOptions, AnmStep, follow_path_anm};
@@ -90,6 +92,14 @@ fn add_imperfection<M: EnergyModel>(
     layout: &Layout,
     threshold: &Threshold,
 ) -> Result<f64, Error> {
+    let uniform = match scene.solver.imperfection {
+        Imperfection::Uniform => true,
+        Imperfection::Mode => false,
+        Imperfection::Auto => layout.is_envelope(),
+    };
+    if let (true, Some(q)) = (uniform, threshold.wavenumber) {
+        return add_uniform_imperfection(scene, problem, layout, q);
+    }
     let mode = threshold.buckling.modes.first().ok_or_else(|| {
         Error::Solver("linear buckling returned no mode to shape the imperfection".into())
     })?;
@@ -118,6 +128,35 @@ fn add_imperfection<M: EnergyModel>(
         *f += epsilon * k;
     }
     Ok(epsilon * amplitude)
+}
+
+/// The uniform imperfection of the paper's envelope runs: a fixed transverse load
+/// $`f = \text{perturbation}\cdot h\,DQ^4`$ on the envelope ($`D = Eh^3/(12(1-\nu^2))`$ from the
+/// scene's material), which would give an envelope of `perturbation`·h on an unloaded infinite
+/// sheet. Returns its nominal physical amplitude $`2\,\text{perturbation}\cdot h`$ (mm).
+fn add_uniform_imperfection<M: EnergyModel>(
+    scene: &Scene,
+    problem: &mut Problem<M>,
+    layout: &Layout,
+    q: f64,
+) -> Result<f64, Error> {
+    let (e, nu, h) = (
+        scene.material.young_modulus,
+        scene.material.poisson_ratio,
+        scene.material.thickness,
+    );
+    let bending = e * h.powi(3) / (12.0 * (1.0 - nu * nu));
+    let load = BodyLoad {
+        field: layout.primary,
+        value: scene.solver.perturbation * h * bending * q.powi(4),
+        proportional: false,
+    };
+    let vectors = LoadVectors::assemble(problem.assembler.mesh(), problem.dofs(), &[], &[load])
+        .map_err(|e| Error::Solver(format!("imperfection load: {e}")))?;
+    for (f, g) in problem.loads.fixed.iter_mut().zip(&vectors.fixed) {
+        *f += g;
+    }
+    Ok(2.0 * scene.solver.perturbation * h)
 }
 
 /// Watches the path: amplitudes, ellipticity at step ends, snapshots; stops at the target.

@@ -39,6 +39,29 @@ pub const MAX_SERIES_TOLERANCE: f64 = 1e-4;
 /// Largest scene file read (a scene is a few hundred bytes; this stops `/dev/zero`).
 pub const MAX_SCENE_BYTES: u64 = 1 << 20;
 
+/// Shape of the imperfection that selects the wrinkled branch (`solver.imperfection`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Imperfection {
+    /// Uniform for envelope models (the paper's runs), mode-shaped for the others.
+    Auto,
+    /// A uniform transverse load on the envelope, $`f = \text{perturbation}\cdot h\,DQ^4`$
+    /// (envelope models only; the shape of every run before mode-shaped imperfections existed).
+    Uniform,
+    /// A load shaped like the first buckling mode, $`F = \varepsilon K_0\varphi`$.
+    Mode,
+}
+
+impl Imperfection {
+    /// The scene spelling.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Imperfection::Auto => "auto",
+            Imperfection::Uniform => "uniform",
+            Imperfection::Mode => "mode",
+        }
+    }
+}
+
 /// Tables a scene may contain.
 const SECTIONS: &[&str] = &[
     "geometry", "material", "model", "mesh", "load", "solver", "output",
@@ -68,6 +91,7 @@ pub const KEYS: &[&str] = &[
     "solver.max_load",
     "solver.max_amplitude_over_h",
     "solver.perturbation",
+    "solver.imperfection",
     "solver.pade",
     "solver.method",
     "output.directory",
@@ -199,6 +223,9 @@ pub struct SolverSpec {
     /// ($`K_0`$ the tangent of the unloaded state), scaled so that the physical wrinkle amplitude
     /// it gives on the unloaded sheet is `perturbation` thicknesses.
     pub perturbation: f64,
+    /// Shape of the imperfection, key `solver.imperfection`: `"auto"` (uniform for envelope
+    /// models, mode-shaped for the others), `"uniform"` or `"mode"`.
+    pub imperfection: Imperfection,
     /// Use Padé approximants, key `solver.pade`.
     pub pade: bool,
     /// Key `solver.method`.
@@ -274,6 +301,7 @@ impl Default for Scene {
                 max_load: 0.0,
                 max_amplitude_over_thickness: 4.0,
                 perturbation: 1e-4,
+                imperfection: Imperfection::Auto,
                 pade: false,
                 method: PathMethod::Anm,
             },
@@ -498,6 +526,7 @@ impl Scene {
             toml_float(solver.max_amplitude_over_thickness)
         );
         let _ = writeln!(text, "perturbation = {}", toml_float(solver.perturbation));
+        let _ = writeln!(text, "imperfection = \"{}\"", solver.imperfection.as_str());
         let _ = writeln!(text, "pade = {}", solver.pade);
         let _ = writeln!(text, "method = \"{}\"", solver.method.as_str());
         text.push_str("\n[output]\n");
@@ -547,6 +576,7 @@ impl Scene {
                 "max_load": self.solver.max_load,
                 "max_amplitude_over_h": self.solver.max_amplitude_over_thickness,
                 "perturbation": self.solver.perturbation,
+                "imperfection": self.solver.imperfection.as_str(),
                 "pade": self.solver.pade,
                 "method": self.solver.method.as_str(),
             },
@@ -611,6 +641,14 @@ impl Scene {
                 self.solver.max_amplitude_over_thickness = 2.0 * number(value).map_err(error)?
             }
             "solver.perturbation" => self.solver.perturbation = number(value).map_err(error)?,
+            "solver.imperfection" => {
+                self.solver.imperfection =
+                    match choice(value, &["auto", "uniform", "mode"]).map_err(error)? {
+                        "uniform" => Imperfection::Uniform,
+                        "mode" => Imperfection::Mode,
+                        _ => Imperfection::Auto,
+                    }
+            }
             "solver.pade" => self.solver.pade = boolean(value).map_err(error)?,
             "solver.method" => {
                 self.solver.method = match choice(value, &["anm", "riks"]).map_err(error)? {
