@@ -127,10 +127,15 @@ pub struct Plan {
 }
 
 impl Plan {
-    /// The plan of `model`: the plate must resolve about 15 wavelengths along X (8 Q8 elements
-    /// each for the `mode_resolution` check), envelope models only the envelope.
+    /// The plan of `model`: a model that resolves the wrinkles themselves (no envelope field
+    /// among its roles, e.g. the plate) must resolve about 15 wavelengths along X (8 Q8
+    /// elements each for the `mode_resolution` check), envelope models only the envelope.
     pub fn for_model(model: &str, quick: bool) -> Plan {
-        let plate = model == "fvk-plate";
+        let plate = wrinkle_models::catalogue()
+            .into_iter()
+            .find(|spec| spec.name == model)
+            .and_then(|spec| crate::physics::Layout::from_spec(spec).ok())
+            .is_some_and(|layout| !layout.is_envelope());
         let meshes = match (plate, quick) {
             (false, false) => vec![(8, 4), (16, 8), (32, 16), (64, 32)],
             (false, true) => vec![(8, 4), (12, 6), (16, 8)],
