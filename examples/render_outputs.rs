@@ -5,9 +5,9 @@
 //! `report.html`.
 //!
 //! ```sh
-//! cargo run --release -- run --out /tmp/o1 --set 'output.vtu_loads=[0.05,0.095,0.1,0.105]'
-//! cargo run --release --example render_outputs -- /tmp/o1 --out /tmp/o1/rendered \
-//!     [--compare /tmp/o3 ...]
+//! cargo run --release -- run --out out/o1 --set 'output.vtu_loads=[0.05,0.095,0.1,0.105]'
+//! cargo run --release --example render_outputs -- out/o1 --out out/o1/rendered \
+//!     [--compare out/o3 ...]
 //! ```
 //!
 //! Runs written before the pipeline report the *envelope*; the physical amplitude is twice it

@@ -358,7 +358,7 @@ pub fn amplitude_at_load(points: &[PathPoint], load: f64) -> Option<f64> {
 }
 
 /// Load where the maximum physical $`a/h`$ first reaches `amplitude` ([`value_at_crossing`];
-/// [`crate::compare::load_at_amplitude`] is its linear counterpart); `None` if never.
+/// `wrinkle compare` uses it too); `None` if never.
 pub fn load_at_amplitude(points: &[PathPoint], amplitude: f64) -> Option<f64> {
     let samples: Vec<(f64, f64)> = points
         .iter()

@@ -8,6 +8,7 @@
 //! needs a mesh that resolves its wrinkles; an envelope model does not).
 
 use crate::Error;
+use crate::bench::load_at_amplitude;
 use crate::output::{
     PathPoint, Quantity, Response, ResponsePoint, plot_comparison, write_bytes_atomically,
     write_json,
@@ -54,18 +55,6 @@ pub struct Comparison {
     pub rows: Vec<CompareRow>,
     /// The closed-form threshold (eq. 42) when the scene has one.
     pub closed_form_critical_load: Option<f64>,
-}
-
-/// Load at which `amplitude` (over $`h`$) is first reached.
-pub fn load_at_amplitude(points: &[PathPoint], amplitude: f64) -> Option<f64> {
-    points.windows(2).find_map(|pair| {
-        let (a, b) = (&pair[0], &pair[1]);
-        (a.max_amplitude_over_h < amplitude && b.max_amplitude_over_h >= amplitude).then(|| {
-            let t = (amplitude - a.max_amplitude_over_h)
-                / (b.max_amplitude_over_h - a.max_amplitude_over_h);
-            a.lambda + t * (b.lambda - a.lambda)
-        })
-    })
 }
 
 fn row_of(model: &str, summary: &serde_json::Value, outcome: &RunOutcome) -> CompareRow {

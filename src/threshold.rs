@@ -132,7 +132,7 @@ pub fn find_threshold<M: EnergyModel>(
             M::SPEC.name
         ));
     }
-    let mut reference_load = 0.0;
+    let reference_load;
     let (buckling, ellipticity, q, source, search) = match (scene.model.wavenumber, has_wavenumber)
     {
         (Wavenumber::Auto, true)
@@ -151,6 +151,7 @@ pub fn find_threshold<M: EnergyModel>(
         }
         (Wavenumber::Auto, true) => {
             let (search, source) = search_wavenumber(scene, problem, factor, quiet, &mut notes)?;
+            reference_load = search.4;
             (search.0, search.1, Some(search.2), source, search.3)
         }
         _ => {
@@ -221,10 +222,25 @@ fn reference_carrier<M: EnergyModel>(
             M::SPEC.name
         )
     });
+    let (buckling, ellipticity, shift) =
+        buckle_at_wavenumber(scene, problem, factor, quiet, notes, q)?;
+    Ok((buckling, ellipticity, q, shift))
+}
+
+/// Linear buckling of `problem` with its wavenumber set to `q` ([`robust_buckling`]), the
+/// ellipticity at the threshold, and the load the analysis linearised about.
+fn buckle_at_wavenumber<M: EnergyModel>(
+    scene: &Scene,
+    problem: &mut Problem<M>,
+    factor: &mut SparseFactorization,
+    quiet: bool,
+    notes: &mut Vec<String>,
+    q: f64,
+) -> Result<(LinearBuckling, EllipticityReport, f64), Error> {
     set_model_parameter(problem, "wavenumber", q).map_err(|e| Error::Solver(e.to_string()))?;
     let (buckling, shift) = robust_buckling(scene, problem, factor, quiet, notes)?;
     let ellipticity = ellipticity_at_critical_load(problem, &buckling, shift);
-    Ok((buckling, ellipticity, q, shift))
+    Ok((buckling, ellipticity, shift))
 }
 
 /// Relative accuracy of $`Q`$ on the coarse mesh of the two-level search.
@@ -256,6 +272,7 @@ type SearchOutcome = (
     EllipticityReport,
     f64,
     Vec<WavenumberEvaluation>,
+    f64,
 );
 
 /// The global wavenumber search, with the reference envelope's $`Q`$ for a model that has no
@@ -327,6 +344,7 @@ fn search_wavenumber<M: EnergyModel>(
             search.ellipticity,
             search.parameter,
             search.evaluations,
+            0.0,
         );
         return Ok((outcome, "auto".into()));
     }
@@ -336,11 +354,9 @@ fn search_wavenumber<M: EnergyModel>(
         "model `{}` has no wavelength selection of its own (its critical load falls with Q down to the end of the range, {:.3e} 1/mm); Q = {q:.6e} 1/mm is taken from the reference-envelope minimisation on the same scene",
         M::SPEC.name, range.0
     ));
-    set_model_parameter(problem, "wavenumber", q).map_err(|e| Error::Solver(e.to_string()))?;
-    let buckling = linear_buckling(problem, factor, &options.buckling)
-        .map_err(|e| Error::Solver(format!("linear buckling: {e}")))?;
-    let ellipticity = ellipticity_at_critical_load(problem, &buckling, 0.0);
-    let outcome = (buckling, ellipticity, q, search.evaluations);
+    let (buckling, ellipticity, shift) =
+        buckle_at_wavenumber(scene, problem, factor, quiet, notes, q)?;
+    let outcome = (buckling, ellipticity, q, search.evaluations, shift);
     Ok((outcome, "auto (reference-envelope)".into()))
 }
 

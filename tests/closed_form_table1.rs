@@ -1,5 +1,5 @@
 //! Closed forms of the clamped rectangle against independent truths: THEORY.md §8 and Table 1 of
-//! Damil, Potier-Ferry & Hu (2014) (`/work/shared/seed/000_64b54541c3fe57e8.txt`, lines ~2195–2217).
+//! Damil, Potier-Ferry & Hu (2014) (`../shared/seed/000_64b54541c3fe57e8.txt`, lines ~2195–2217).
 //!
 //! Table 1 (L_X = L_Y = 200 mm, h = 0.05 mm, E = 70000 MPa; printed "ν = 0"):
 //!
