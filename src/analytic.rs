@@ -115,10 +115,9 @@ pub struct TableOneRow {
 /// The clamped rectangle of a scene that has a closed form, or a scene error naming the key
 /// that rules it out (`load.kind`, `model.name`, `model.direction`, `load.tension_y`).
 pub fn closed_form_rectangle(scene: &Scene) -> Result<ClampedRectangle, Error> {
-    let origin = format!("scene {}", scene.source);
     if scene.load.kind != LoadKind::Biaxial {
         return Err(Error::scene(
-            origin,
+            scene.origin_of("load.kind"),
             "load.kind",
             format!(
                 "the analytic command needs \"biaxial\" (the clamped rectangle of THEORY.md §8); \
@@ -129,7 +128,7 @@ pub fn closed_form_rectangle(scene: &Scene) -> Result<ClampedRectangle, Error> {
     }
     if scene.model.name != CLOSED_FORM_MODEL {
         return Err(Error::scene(
-            origin,
+            scene.origin_of("model.name"),
             "model.name",
             format!(
                 "the closed forms (42)–(62) are those of \"{CLOSED_FORM_MODEL}\"; model \"{}\" \
@@ -140,7 +139,7 @@ pub fn closed_form_rectangle(scene: &Scene) -> Result<ClampedRectangle, Error> {
     }
     if scene.model.direction_degrees != 0.0 {
         return Err(Error::scene(
-            origin,
+            scene.origin_of("model.direction"),
             "model.direction",
             format!(
                 "the closed forms assume the wave vector along X (0 degrees), got {}",
@@ -154,7 +153,7 @@ pub fn closed_form_rectangle(scene: &Scene) -> Result<ClampedRectangle, Error> {
             / rectangle.length_x.powi(2)
             * (6.0 * (rectangle.length_y / rectangle.length_x).powi(2) + 2.0);
         return Err(Error::scene(
-            origin,
+            scene.origin_of("load.tension_y"),
             "load.tension_y",
             format!(
                 "(42) has a wrinkling minimum only for N_Y > {threshold:.6e} N/mm, got {}",

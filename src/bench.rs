@@ -588,7 +588,7 @@ fn fill_row(row: &mut BenchRow, summary: &serde_json::Value, outcome: &RunOutcom
         RunOutcome::Reached => ("reached", None, true),
         RunOutcome::Invalid(r) => ("invalid", Some(r.clone()), true),
         RunOutcome::Incomplete(r) => ("incomplete", Some(r.clone()), false),
-        RunOutcome::Failed(r) => ("failed", Some(r.clone()), false),
+        RunOutcome::Failed(r) | RunOutcome::Interrupted(r) => ("failed", Some(r.clone()), false),
     };
     row.outcome = name.into();
     row.reason = reason;

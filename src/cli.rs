@@ -18,6 +18,10 @@ use std::path::{Path, PathBuf};
 #[derive(Debug, Parser)]
 #[command(name = "wrinkle", version, about)]
 pub struct Cli {
+    /// Worker threads for assembly and factorisation (default: one per core). Results do not
+    /// depend on it: every sum is taken in an order fixed by the mesh.
+    #[arg(long, global = true, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=1024))]
+    pub threads: Option<u16>,
     /// What to do.
     #[command(subcommand)]
     pub command: Command,
@@ -152,6 +156,13 @@ where
             return if error.use_stderr() { 2 } else { 0 };
         }
     };
+    if let Some(threads) = cli.threads {
+        // Only fails when a global pool already exists (a second call in one process, as in
+        // tests); the existing pool is then kept.
+        let _ = rayon::ThreadPoolBuilder::new()
+            .num_threads(usize::from(threads))
+            .build_global();
+    }
     match execute(&cli.command) {
         Ok(()) => 0,
         Err(error) => {
@@ -168,9 +179,20 @@ pub fn execute(command: &Command) -> Result<(), Error> {
             let scene = scene.resolve()?;
             let report = commands::buckle(&scene, *quiet)?;
             if *json {
-                print_stdout(&format!("{}\n", buckle_json(&scene, &report)))
+                print_stdout(&format!("{}\n", buckle_json(&scene, &report)))?;
             } else {
-                print_stdout(&buckle_summary(&scene, &report))
+                print_stdout(&buckle_summary(&scene, &report))?;
+            }
+            match report
+                .warnings
+                .iter()
+                .find(|w| !scene.validity.accepts(w.check))
+            {
+                Some(warning) => Err(Error::Invalid(format!(
+                    "{}: {} (`validity.accept = [\"{}\"]` accepts it)",
+                    warning.check, warning.message, warning.check
+                ))),
+                None => Ok(()),
             }
         }
         Command::Run { scene, out, quiet } => {
@@ -179,6 +201,7 @@ pub fn execute(command: &Command) -> Result<(), Error> {
                 scene.output.directory = directory.display().to_string();
             }
             let directory = PathBuf::from(&scene.output.directory);
+            crate::interrupt::install();
             commands::run(&scene, &directory, *quiet)?;
             eprintln!("outputs in {}", directory.display());
             Ok(())
@@ -294,7 +317,14 @@ pub fn buckle_summary(scene: &Scene, report: &Threshold) -> String {
         lines.push(format!("note: {note}"));
     }
     for warning in &report.warnings {
-        lines.push(format!("warning ({}): {}", warning.check, warning.message));
+        if scene.validity.accepts(warning.check) {
+            lines.push(format!(
+                "note ({}, accepted by validity.accept): {}",
+                warning.check, warning.message
+            ));
+        } else {
+            lines.push(format!("warning ({}): {}", warning.check, warning.message));
+        }
     }
     let mut text = lines.join("\n");
     text.push('\n');

@@ -30,6 +30,7 @@ pub fn run(scene: &Scene, output_directory: &Path, quiet: bool) -> Result<RunRep
         RunOutcome::Failed(why) => Err(Error::Solver(format!("{why} {written}"))),
         RunOutcome::Incomplete(why) => Err(Error::Incomplete(format!("{why} {written}"))),
         RunOutcome::Invalid(why) => Err(Error::Invalid(format!("{why} {written}"))),
+        RunOutcome::Interrupted(why) => Err(Error::Interrupted(format!("{why} {written}"))),
     }
 }
 

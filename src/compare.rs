@@ -65,6 +65,7 @@ fn row_of(model: &str, summary: &serde_json::Value, outcome: &RunOutcome) -> Com
         RunOutcome::Failed(r) => ("failed", Some(r.clone())),
         RunOutcome::Incomplete(r) => ("incomplete", Some(r.clone())),
         RunOutcome::Invalid(r) => ("invalid", Some(r.clone())),
+        RunOutcome::Interrupted(r) => ("interrupted", Some(r.clone())),
     };
     CompareRow {
         model: model.to_string(),

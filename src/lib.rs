@@ -15,6 +15,7 @@ pub mod cli;
 pub mod closed_form;
 pub mod commands;
 pub mod compare;
+pub mod interrupt;
 pub mod output;
 pub mod physics;
 pub mod results;
@@ -61,18 +62,24 @@ pub enum Error {
     /// The run finished but a validity check of the model failed (scale separation,
     /// ellipticity at the threshold, mode resolution).
     Invalid(String),
+    /// The user interrupted the run (Ctrl-C); every point completed before was written.
+    Interrupted(String),
 }
+
+/// Exit code of an interrupted run (128 + SIGINT, the shell's convention).
+pub const EXIT_INTERRUPTED: i32 = 130;
 
 impl Error {
     /// Process exit code (table in `docs/outputs.md`): 2 for scene and usage errors (the input
     /// is wrong), 1 for a failure while computing or writing results, 3 for a run that stopped
-    /// before its target, 4 for a result outside the model's validity.
+    /// before its target, 4 for a result outside the model's validity, 130 when interrupted.
     pub fn exit_code(&self) -> i32 {
         match self {
             Error::Scene { .. } | Error::Usage(_) => 2,
             Error::Io { .. } | Error::Solver(_) | Error::NotImplemented(_) => 1,
             Error::Incomplete(_) => 3,
             Error::Invalid(_) => 4,
+            Error::Interrupted(_) => EXIT_INTERRUPTED,
         }
     }
 
@@ -113,6 +120,7 @@ impl fmt::Display for Error {
             Error::NotImplemented(message) => write!(formatter, "not implemented: {message}"),
             Error::Incomplete(message) => write!(formatter, "incomplete: {message}"),
             Error::Invalid(message) => write!(formatter, "outside the model's validity: {message}"),
+            Error::Interrupted(message) => write!(formatter, "interrupted: {message}"),
         }
     }
 }

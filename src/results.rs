@@ -16,8 +16,10 @@ pub enum RunOutcome {
     Failed(String),
     /// The path stopped before the target: `max_steps`, `max_load`, or never wrinkled (exit 3).
     Incomplete(String),
-    /// The target was reached but a validity check failed (exit 4).
+    /// The target was reached but a validity check the scene does not accept failed (exit 4).
     Invalid(String),
+    /// Interrupted by the user (Ctrl-C) on the path; the completed points were written (exit 130).
+    Interrupted(String),
 }
 
 impl RunOutcome {
@@ -28,6 +30,29 @@ impl RunOutcome {
             RunOutcome::Failed(_) => 1,
             RunOutcome::Incomplete(_) => 3,
             RunOutcome::Invalid(_) => 4,
+            RunOutcome::Interrupted(_) => crate::EXIT_INTERRUPTED,
+        }
+    }
+
+    /// The `outcome` key of `summary.json`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            RunOutcome::Reached => "reached",
+            RunOutcome::Failed(_) => "failed",
+            RunOutcome::Incomplete(_) => "incomplete",
+            RunOutcome::Invalid(_) => "invalid",
+            RunOutcome::Interrupted(_) => "interrupted",
+        }
+    }
+
+    /// Why the run did not reach what was asked (`None` when it did).
+    pub fn reason(&self) -> Option<&str> {
+        match self {
+            RunOutcome::Reached => None,
+            RunOutcome::Failed(why)
+            | RunOutcome::Incomplete(why)
+            | RunOutcome::Invalid(why)
+            | RunOutcome::Interrupted(why) => Some(why),
         }
     }
 }
@@ -48,11 +73,15 @@ pub struct RunReport {
 }
 
 /// Displacement snapshots along the path for the profile plots and VTU requests.
+#[derive(Default)]
 pub struct Snap {
     /// Load.
     pub load: f64,
     /// Nodal values of the whole mesh.
     pub values: Vec<f64>,
+    /// Element means of the stress resultants $`N_X, N_Y, N_{XY}`$ (N/mm), for the states
+    /// written as VTU (empty otherwise).
+    pub stress_resultants: Vec<Vec<f64>>,
 }
 
 /// Everything the outputs need from the path.
@@ -71,4 +100,6 @@ pub struct Trace {
     pub requested: Vec<Snap>,
     /// Last state (nodal values of the whole mesh).
     pub last: Snap,
+    /// The user interrupted the path (Ctrl-C) after the last point.
+    pub interrupted: bool,
 }

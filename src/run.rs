@@ -63,6 +63,7 @@ impl ModelVisitor for RunVisitor<'_> {
         let mut factor = analyse(&problem)?;
         let threshold = find_threshold(scene, &mut problem, &mut factor, self.quiet)?;
         let imperfection = add_imperfection(scene, &mut problem, &layout, &threshold)?;
+        let _phase = crate::interrupt::PathPhase::enter();
         let trace = trace_path(
             scene,
             &problem,
@@ -227,6 +228,7 @@ impl<M: EnergyModel> PathRecorder<'_, M> {
             self.trace.profiles.push(Snap {
                 load: state.load,
                 values: values.clone(),
+                ..Snap::default()
             });
         }
         self.progress.update(
@@ -237,8 +239,12 @@ impl<M: EnergyModel> PathRecorder<'_, M> {
         self.trace.last = Snap {
             load: state.load,
             values,
+            ..Snap::default()
         };
-        if max_amplitude / h >= self.target {
+        if crate::interrupt::requested() {
+            self.trace.interrupted = true;
+            PathControl::Stop
+        } else if max_amplitude / h >= self.target {
             PathControl::Stop
         } else {
             PathControl::Continue
@@ -286,6 +292,7 @@ impl<M: EnergyModel> PathRecorder<'_, M> {
             self.trace.requested.push(Snap {
                 load: requested,
                 values: self.problem.dofs().expand(&interpolated, requested),
+                ..Snap::default()
             });
         }
     }
@@ -367,10 +374,8 @@ impl<'a, M: EnergyModel> PathRecorder<'a, M> {
                 loss_of_ellipticity: None,
                 profiles: Vec::new(),
                 requested: Vec::new(),
-                last: Snap {
-                    load: 0.0,
-                    values: Vec::new(),
-                },
+                last: Snap::default(),
+                interrupted: false,
             },
         }
     }
@@ -402,15 +407,45 @@ fn trace_path<M: EnergyModel>(
             &mut anm_steps,
         )
     };
-    recorder.progress.finish(&format!(
-        "{} ({} steps)",
-        result.stop.describe(),
-        result.statistics.steps
-    ));
+    let stop = if recorder.trace.interrupted {
+        "interrupted by the user".to_string()
+    } else {
+        result.stop.describe()
+    };
+    recorder
+        .progress
+        .finish(&format!("{stop} ({} steps)", result.statistics.steps));
     let mut trace = recorder.trace;
+    if scene.output.vtu {
+        for snap in trace.requested.iter_mut().chain([&mut trace.last]) {
+            snap.stress_resultants = stress_resultants(problem, layout, &snap.values);
+        }
+    }
     trace.result = result;
     trace.anm_steps = anm_steps;
     Ok(trace)
+}
+
+/// Element means of $`N_X = \partial\psi/\partial u_{,X}`$, $`N_Y = \partial\psi/\partial v_{,Y}`$
+/// and $`N_{XY} = \partial\psi/\partial u_{,Y}`$ (N/mm), from the model's own residual kernel:
+/// the same definition for every model, whatever its strain contains (the envelope's
+/// $`|A|^2`$ terms, the plate's $`w_{,X}^2/2`$).
+fn stress_resultants<M: EnergyModel>(
+    problem: &Problem<M>,
+    layout: &Layout,
+    values: &[f64],
+) -> Vec<Vec<f64>> {
+    use wrinkle_runtime::model::{Derivative, JetEntry};
+    let [u, v] = layout.in_plane;
+    let entry = |field, derivative| JetEntry { field, derivative };
+    problem.assembler.element_mean_conjugates(
+        values,
+        &[
+            entry(u, Derivative::X),
+            entry(v, Derivative::Y),
+            entry(u, Derivative::Y),
+        ],
+    )
 }
 
 /// The path solver chosen by `solver.method`.

@@ -8,7 +8,7 @@ use crate::Error;
 use crate::output::{
     ClosedFormCurve, FieldData, GridField, LoadMarker, PointArray, Profile, ProfilePlot, Quantity,
     Report, ReportFigure, Response, ResponsePoint, RunDirectory, RunSummary, Severity, Warning,
-    plot_profiles, plot_response, plot_wrinkle_map, write_fields_vtu, write_path_csv,
+    plot_profiles, plot_response, plot_wrinkle_map, write_fields_vtu_with_cells, write_path_csv,
     write_surface_vtu,
 };
 use crate::physics::{Layout, Snapshot};
@@ -150,6 +150,22 @@ fn outcome(context: &RunContext, trace: &Trace) -> RunOutcome {
     if stop.is_failure() {
         return RunOutcome::Failed(stop.describe());
     }
+    if trace.interrupted {
+        let at = trace.points.last().map_or_else(
+            || "before the first point".to_string(),
+            |p| {
+                format!(
+                    "at λ = {} (max |w|/h = {:.4})",
+                    context.load_quantity().format_value(p.lambda),
+                    p.max_amplitude_over_h
+                )
+            },
+        );
+        return RunOutcome::Interrupted(format!(
+            "stopped by the user (Ctrl-C) {at} after {} points; every completed point is in path.csv",
+            trace.points.len()
+        ));
+    }
     let reached = trace.points.last().is_some_and(|p| {
         p.max_amplitude_over_h >= context.scene.solver.max_amplitude_over_thickness
     });
@@ -172,8 +188,17 @@ fn outcome(context: &RunContext, trace: &Trace) -> RunOutcome {
             context.scene.solver.max_amplitude_over_thickness
         ));
     }
-    if let Some(warning) = context.threshold.warnings.first() {
-        return RunOutcome::Invalid(format!("{}: {}", warning.check, warning.message));
+    let validity = &context.scene.validity;
+    if let Some(warning) = context
+        .threshold
+        .warnings
+        .iter()
+        .find(|w| !validity.accepts(w.check))
+    {
+        return RunOutcome::Invalid(format!(
+            "{}: {} (`validity.accept = [\"{}\"]` accepts it)",
+            warning.check, warning.message, warning.check
+        ));
     }
     RunOutcome::Reached
 }
@@ -184,21 +209,32 @@ fn write_fields(context: &RunContext, trace: &Trace, dir: &Path) -> Result<Vec<P
     let mut write_nodal = |name: String, snap: &Snap| -> Result<(), Error> {
         let path = dir.join(name);
         let extra = nodal_amplitude(context, &snap.values);
-        write_fields_vtu(
+        let cells: Vec<PointArray> = ["N_X", "N_Y", "N_XY"]
+            .iter()
+            .zip(&snap.stress_resultants)
+            .map(|(name, values)| PointArray::scalar(*name, values.clone()))
+            .collect();
+        write_fields_vtu_with_cells(
             &path,
             context.mesh,
             context.spec.fields,
             &snap.values,
             &extra,
+            &cells,
             &context.field_data(snap.load),
         )
         .map_err(io_error(&path))?;
         files.push(path);
         Ok(())
     };
-    write_nodal("fields_final.vtu".into(), &trace.last)?;
-    for snap in &trace.requested {
-        write_nodal(format!("fields_load_{:.6}.vtu", snap.load), snap)?;
+    if context.scene.output.vtu {
+        write_nodal("fields_final.vtu".into(), &trace.last)?;
+        for snap in &trace.requested {
+            write_nodal(format!("fields_load_{:.6}.vtu", snap.load), snap)?;
+        }
+    }
+    if !context.scene.output.surface {
+        return Ok(files);
     }
     let bounds = context.mesh.bounds();
     let snapshot = context.snapshot(&trace.last.values);
@@ -536,7 +572,17 @@ fn warnings(context: &RunContext, trace: &Trace) -> Vec<Warning> {
         .threshold
         .warnings
         .iter()
-        .map(|w| Warning::new(Severity::Warning, w.check, w.message.clone()))
+        .map(|w| {
+            if context.scene.validity.accepts(w.check) {
+                Warning::new(
+                    Severity::Note,
+                    w.check,
+                    format!("{} (accepted by `validity.accept`)", w.message),
+                )
+            } else {
+                Warning::new(Severity::Warning, w.check, w.message.clone())
+            }
+        })
         .collect();
     if let Some((load, report)) = &trace.loss_of_ellipticity {
         warnings.push(Warning::new(
@@ -581,12 +627,29 @@ fn run_summary(context: &RunContext, trace: &Trace, outcome: &RunOutcome) -> Run
         steps: stats.steps,
         factorizations: stats.factorizations,
         seconds: context.seconds,
-        stop: match outcome {
-            RunOutcome::Reached => trace.result.stop.describe(),
-            RunOutcome::Failed(s) | RunOutcome::Incomplete(s) | RunOutcome::Invalid(s) => s.clone(),
-        },
+        stop: outcome
+            .reason()
+            .map_or_else(|| trace.result.stop.describe(), str::to_string),
         reached_target: *outcome == RunOutcome::Reached,
     }
+}
+
+/// The VTU files written, each with its load (the `vtu` key of `summary.json`).
+fn vtu_files(scene: &Scene, trace: &Trace) -> Vec<serde_json::Value> {
+    let mut files = Vec::new();
+    if scene.output.vtu {
+        files.push(json!({"load": trace.last.load, "file": "fields_final.vtu"}));
+        files.extend(
+            trace
+                .requested
+                .iter()
+                .map(|s| json!({"load": s.load, "file": format!("fields_load_{:.6}.vtu", s.load)})),
+        );
+    }
+    if scene.output.surface {
+        files.push(json!({"load": trace.last.load, "file": "surface_final.vtu"}));
+    }
+    files
 }
 
 /// `summary.json` (keys documented in `docs/outputs.md`).
@@ -610,13 +673,9 @@ fn summary_json(context: &RunContext, trace: &Trace, outcome: &RunOutcome) -> se
             "load": load, "location": r.location, "direction_rad": r.direction, "field": r.field,
             "margin": r.worst_margin, "area_fraction": r.violated_fraction})),
         "imperfection_amplitude": context.imperfection,
-        "stop": trace.result.stop.describe(),
-        "outcome": match outcome {
-            RunOutcome::Reached => "reached",
-            RunOutcome::Failed(_) => "failed",
-            RunOutcome::Incomplete(_) => "incomplete",
-            RunOutcome::Invalid(_) => "invalid",
-        },
+        "stop": if trace.interrupted { "interrupted by the user (Ctrl-C)".to_string() } else { trace.result.stop.describe() },
+        "outcome": outcome.name(),
+        "outcome_reason": outcome.reason(),
         "exit_code": outcome.exit_code(),
         "failed": matches!(outcome, RunOutcome::Failed(_)),
         "steps": stats.steps,
@@ -645,9 +704,7 @@ fn summary_json(context: &RunContext, trace: &Trace, outcome: &RunOutcome) -> se
             "geometric_radius": s.geometric_radius, "predicted_bifurcation": s.predicted_bifurcation,
             "negative_pivots": s.negative_pivots,
         })).collect::<Vec<_>>(),
-        "vtu": trace.requested.iter().map(|s| json!({"load": s.load, "file": format!("fields_load_{:.6}.vtu", s.load)}))
-            .chain([json!({"load": trace.last.load, "file": "fields_final.vtu"}), json!({"load": trace.last.load, "file": "surface_final.vtu"})])
-            .collect::<Vec<_>>(),
+        "vtu": vtu_files(context.scene, trace),
         "path": trace.points,
         "scene": context.scene.echo_json(),
     })

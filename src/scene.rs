@@ -64,7 +64,16 @@ impl Imperfection {
 
 /// Tables a scene may contain.
 const SECTIONS: &[&str] = &[
-    "geometry", "material", "model", "mesh", "load", "solver", "output",
+    "geometry", "material", "model", "mesh", "load", "solver", "output", "validity",
+];
+
+/// The validity checks a scene may accept (`validity.accept`), as reported in `check` of each
+/// warning (docs/outputs.md); `"all"` accepts every one.
+pub const VALIDITY_CHECKS: &[&str] = &[
+    "scale_separation",
+    "ellipticity",
+    "mode_resolution",
+    "well_posedness",
 ];
 
 /// Every leaf key a scene may contain, in document order (`model.parameters` is a table of
@@ -97,6 +106,9 @@ pub const KEYS: &[&str] = &[
     "output.directory",
     "output.vtu_loads",
     "output.plots",
+    "output.vtu",
+    "output.surface",
+    "validity.accept",
 ];
 
 /// The rectangle $`[0, L_X] \times [0, L_Y]`$ (mm).
@@ -239,8 +251,31 @@ pub struct OutputSpec {
     pub directory: String,
     /// Loads $`\lambda`$ at which fields are written as VTU, key `output.vtu_loads`.
     pub vtu_loads: Vec<f64>,
-    /// Whether to draw plots, key `output.plots`.
+    /// Whether to draw plots (and embed them in `report.html`), key `output.plots`.
     pub plots: bool,
+    /// Whether to write the nodal fields at the end of the path (`fields_final.vtu`) and at
+    /// `vtu_loads`, key `output.vtu`.
+    pub vtu: bool,
+    /// Whether to write the reconstructed physical surface (`surface_final.vtu`, a grid refined
+    /// to resolve the wrinkles of envelope models), key `output.surface`.
+    pub surface: bool,
+}
+
+/// Which validity checks a scene accepts, table `[validity]`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ValiditySpec {
+    /// Checks (names of [`VALIDITY_CHECKS`], or `"all"`) whose failure is still reported but
+    /// does not make the exit code non-zero, key `validity.accept`.
+    pub accept: Vec<String>,
+}
+
+impl ValiditySpec {
+    /// Whether a failed `check` is accepted by the scene.
+    pub fn accepts(&self, check: &str) -> bool {
+        self.accept
+            .iter()
+            .any(|name| name == "all" || name == check)
+    }
 }
 
 /// A complete, validated description of one computation.
@@ -260,8 +295,13 @@ pub struct Scene {
     pub solver: SolverSpec,
     /// Table `[output]`.
     pub output: OutputSpec,
+    /// Table `[validity]`.
+    pub validity: ValiditySpec,
     /// File the scene was read from, or [`BUILT_IN_SOURCE`].
     pub source: String,
+    /// Keys set by `--set`, each with the assignment that set it last: an error about such a
+    /// key names the override, not the file ([`Scene::origin_of`]).
+    pub overridden: BTreeMap<String, String>,
 }
 
 impl Default for Scene {
@@ -309,8 +349,12 @@ impl Default for Scene {
                 directory: "out".to_string(),
                 vtu_loads: Vec::new(),
                 plots: true,
+                vtu: true,
+                surface: true,
             },
+            validity: ValiditySpec::default(),
             source: BUILT_IN_SOURCE.to_string(),
+            overridden: BTreeMap::new(),
         }
     }
 }
@@ -406,22 +450,40 @@ impl Scene {
         updated
             .apply_value(key, &value)
             .map_err(|error| Error::scene(&origin, error.key, error.message))?;
+        updated.overridden.insert(key.to_string(), origin);
         *self = updated;
         Ok(())
+    }
+
+    /// Where `key` was set: `--set KEY=VALUE` when an override set it (or its table), otherwise
+    /// `scene SOURCE`. Errors found after parsing (validation, an unknown model, a solver
+    /// refusing a value) are attributed with it.
+    pub fn origin_of(&self, key: &str) -> String {
+        let set_by = |prefix: &str| {
+            key == prefix
+                || key
+                    .strip_prefix(prefix)
+                    .is_some_and(|rest| rest.starts_with('.'))
+        };
+        self.overridden
+            .iter()
+            .filter(|(prefix, _)| set_by(prefix))
+            .max_by_key(|(prefix, _)| prefix.len())
+            .map(|(_, origin)| origin.clone())
+            .unwrap_or_else(|| format!("scene {}", self.source))
     }
 
     /// Checks every range constraint (values set through the struct fields bypass the checks of
     /// the parser). Errors are attributed to `scene SOURCE`.
     pub fn validate(&self) -> Result<(), Error> {
-        let origin = format!("scene {}", self.source);
         for key in KEYS {
             self.check_key(key)
-                .map_err(|message| Error::scene(&origin, *key, message))?;
+                .map_err(|message| Error::scene(self.origin_of(key), *key, message))?;
         }
         let elements = self.mesh.elements_x.saturating_mul(self.mesh.elements_y);
         if elements > MAX_ELEMENTS {
             return Err(Error::scene(
-                &origin,
+                self.origin_of("mesh.nx"),
                 "mesh.nx",
                 format!(
                     "mesh.nx × mesh.ny = {} × {} = {elements} elements is more than the {MAX_ELEMENTS} this tool solves in 24 GiB",
@@ -431,9 +493,10 @@ impl Scene {
         }
         for (name, value) in &self.model.parameters {
             if !value.is_finite() {
+                let key = format!("model.parameters.{name}");
                 return Err(Error::scene(
-                    &origin,
-                    format!("model.parameters.{name}"),
+                    self.origin_of(&key),
+                    key,
                     format!("must be a finite number, got {value}"),
                 ));
             }
@@ -539,6 +602,16 @@ impl Scene {
             .collect();
         let _ = writeln!(text, "vtu_loads = [{}]", loads.join(", "));
         let _ = writeln!(text, "plots = {}", self.output.plots);
+        let _ = writeln!(text, "vtu = {}", self.output.vtu);
+        let _ = writeln!(text, "surface = {}", self.output.surface);
+        text.push_str("\n[validity]\n");
+        let accepted: Vec<String> = self
+            .validity
+            .accept
+            .iter()
+            .map(|name| toml_string(name))
+            .collect();
+        let _ = writeln!(text, "accept = [{}]", accepted.join(", "));
         text
     }
 
@@ -584,7 +657,10 @@ impl Scene {
                 "directory": self.output.directory,
                 "vtu_loads": self.output.vtu_loads,
                 "plots": self.output.plots,
+                "vtu": self.output.vtu,
+                "surface": self.output.surface,
             },
+            "validity": { "accept": self.validity.accept },
         })
     }
 
@@ -621,7 +697,8 @@ impl Scene {
         Ok(())
     }
 
-    /// The `solver.*` and `output.*` keys (what `wrinkle run` does with the problem).
+    /// The `solver.*`, `output.*` and `validity.*` keys (what `wrinkle run` does with the
+    /// problem).
     fn apply_run_key(&mut self, key: &str, value: &Value) -> Result<(), KeyError> {
         let error = |message: String| KeyError::new(key, message);
         match key {
@@ -674,6 +751,9 @@ impl Scene {
                     .map_err(error)?;
             }
             "output.plots" => self.output.plots = boolean(value).map_err(error)?,
+            "output.vtu" => self.output.vtu = boolean(value).map_err(error)?,
+            "output.surface" => self.output.surface = boolean(value).map_err(error)?,
+            "validity.accept" => self.validity.accept = accepted_checks(value).map_err(error)?,
             _ => return Err(KeyError::new(key, unknown_key_message(key))),
         }
         Ok(())
@@ -732,7 +812,10 @@ impl Scene {
                 }
             }
             "load.tension_y" => self.load.tension_y = number(value).map_err(error)?,
-            _ if key.starts_with("solver.") || key.starts_with("output.") => {
+            _ if ["solver.", "output.", "validity."]
+                .iter()
+                .any(|prefix| key.starts_with(prefix)) =>
+            {
                 self.apply_run_key(key, value)?
             }
             _ => return Err(KeyError::new(key, unknown_key_message(key))),
@@ -864,6 +947,32 @@ fn number(value: &Value) -> Result<f64, String> {
         Value::Integer(number) => Ok(*number as f64),
         other => Err(format!("expected a number, got {}", describe(other))),
     }
+}
+
+/// `validity.accept`: an array of names from [`VALIDITY_CHECKS`] or `"all"` (a single string
+/// is taken as a one-element array).
+fn accepted_checks(value: &Value) -> Result<Vec<String>, String> {
+    let items: Vec<&Value> = match value {
+        Value::Array(items) => items.iter().collect(),
+        single @ Value::String(_) => vec![single],
+        other => {
+            return Err(format!(
+                "expected an array of check names, got {}",
+                describe(other)
+            ));
+        }
+    };
+    let mut names: Vec<&str> = VALIDITY_CHECKS.to_vec();
+    names.push("all");
+    items
+        .into_iter()
+        .enumerate()
+        .map(|(index, item)| {
+            choice(item, &names)
+                .map(str::to_string)
+                .map_err(|message| format!("item {index}: {message}"))
+        })
+        .collect()
 }
 
 fn string(value: &Value) -> Result<String, String> {

@@ -19,7 +19,7 @@ use wrinkle_runtime::fem::{DirichletCondition, EdgeTraction, Mesh};
 use wrinkle_runtime::problem::Problem;
 
 pub(crate) fn scene_error(scene: &Scene, key: &str, message: impl Into<String>) -> Error {
-    Error::scene(format!("scene {}", scene.source), key, message)
+    Error::scene(scene.origin_of(key), key, message)
 }
 
 /// Sets the model's parameters from the scene: `young`, `poisson`, `thickness` from

@@ -291,3 +291,74 @@ fn surface_vtu_rejects_bad_grids_and_non_finite_values() {
     assert!(error.to_string().contains("not finite"), "{error}");
     assert!(!file.exists());
 }
+
+fn cell_array(piece: &vtkio::model::UnstructuredGridPiece, name: &str) -> Vec<f64> {
+    let attribute = piece
+        .data
+        .cell
+        .iter()
+        .find(|a| a.name() == name)
+        .unwrap_or_else(|| panic!("no cell array `{name}`"));
+    let Attribute::DataArray(array) = attribute else {
+        panic!("`{name}` is not a data array");
+    };
+    array.data.clone().cast_into::<f64>().unwrap()
+}
+
+/// The stress resultants `wrinkle run` stores per element (N_X = ∂ψ/∂u_X, N_Y = ∂ψ/∂v_Y,
+/// N_XY = ∂ψ/∂u_Y) balance the applied edge loads: uniform N_X = −λ, N_Y = 10 N/mm before
+/// buckling; after it, N_X varies over the wrinkled zone but its mean over the (uniform) mesh is
+/// still −λ, the mean of N_Y is still N_Y, and N_XY averages to zero.
+#[test]
+fn stress_resultants_in_run_vtu_balance_the_applied_loads() {
+    let dir = scratch_dir("resultants");
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_wrinkle"))
+        .args(["run", "--quiet", "--out", dir.to_str().unwrap()])
+        .args(["--set", "solver.max_amplitude_over_h=2"])
+        .args([
+            "--set",
+            "output.vtu_loads=[0.05]",
+            "--set",
+            "output.plots=false",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(
+        output.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let mean = |values: &[f64]| values.iter().sum::<f64>() / values.len() as f64;
+    let before = read_piece(&dir.join("fields_load_0.050000.vtu"));
+    for (name, expected) in [("N_X", -0.05), ("N_Y", 10.0), ("N_XY", 0.0)] {
+        let values = cell_array(&before, name);
+        assert_eq!(values.len(), 32 * 16);
+        for value in values {
+            assert!(
+                (value - expected).abs() < 1e-8,
+                "{name} = {value} before buckling"
+            );
+        }
+    }
+    let xml = std::fs::read_to_string(dir.join("fields_final.vtu")).unwrap();
+    let load: f64 = field_data_array(&xml, "load").1.trim().parse().unwrap();
+    assert!(load > 0.1, "the final state is post-buckled, λ = {load}");
+    let after = read_piece(&dir.join("fields_final.vtu"));
+    let n_x = cell_array(&after, "N_X");
+    let spread =
+        n_x.iter().cloned().fold(f64::MIN, f64::max) - n_x.iter().cloned().fold(f64::MAX, f64::min);
+    assert!(
+        spread > 0.1 * load,
+        "wrinkles redistribute N_X (spread {spread})"
+    );
+    assert!(
+        (mean(&n_x) + load).abs() < 1e-6 * load,
+        "mean N_X {} vs −λ {}",
+        mean(&n_x),
+        -load
+    );
+    assert!((mean(&cell_array(&after, "N_Y")) - 10.0).abs() < 1e-6 * 10.0);
+    assert!(mean(&cell_array(&after, "N_XY")).abs() < 1e-9);
+    let _ = std::fs::remove_dir_all(&dir);
+}

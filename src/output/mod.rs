@@ -116,7 +116,10 @@ pub use quantity::Quantity;
 pub use report::{
     Report, ReportFigure, RunSummary, Severity, SummaryRow, Warning, format_rows, write_report,
 };
-pub use vtu::{FieldData, FieldValue, PointArray, write_fields_vtu, write_surface_vtu};
+pub use vtu::{
+    FieldData, FieldValue, PointArray, write_fields_vtu, write_fields_vtu_with_cells,
+    write_surface_vtu,
+};
 
 use std::io;
 

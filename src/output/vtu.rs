@@ -154,6 +154,30 @@ pub fn write_fields_vtu(
     extra: &[PointArray],
     field_data: &FieldData,
 ) -> io::Result<()> {
+    write_fields_vtu_with_cells(
+        path,
+        mesh,
+        field_names,
+        nodal_values,
+        extra,
+        &[],
+        field_data,
+    )
+}
+
+/// [`write_fields_vtu`] with cell arrays besides: `cells` hold one value (or three) per
+/// element, in the order of [`Mesh::elements`] (e.g. element means of the stress resultants).
+pub fn write_fields_vtu_with_cells(
+    path: &Path,
+    mesh: &Mesh,
+    field_names: &[&str],
+    nodal_values: &[f64],
+    extra: &[PointArray],
+    cells: &[PointArray],
+    field_data: &FieldData,
+) -> io::Result<()> {
+    check_arrays(cells, mesh.elements.len())?;
+    check_unique_names(cells.iter().map(|array| array.name.as_str()))?;
     let node_count = mesh.nodes.len();
     let field_count = field_names.len();
     check_length("nodal values", node_count * field_count, nodal_values.len())?;
@@ -203,7 +227,7 @@ pub fn write_fields_vtu(
         },
         data: Attributes {
             point: point_arrays,
-            cell: Vec::new(),
+            cell: cells.iter().map(data_array).collect(),
         },
     };
     write_piece(path, "wrinkle finite element fields", piece, field_data)

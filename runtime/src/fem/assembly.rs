@@ -583,6 +583,48 @@ impl<M: EnergyModel> Assembler<M> {
         out
     }
 
+    /// Element means of the work conjugates of jet entries: for each requested entry $`j`$
+    /// (a field and a derivative) and each element $`e`$,
+    /// $$`\bar s_j^e = \frac{1}{A_e}\sum_t \int_{\Omega_e} \frac{\partial\psi_t}{\partial j}\,dA`$$
+    /// with every term integrated by its own rule (terms whose jet lacks $`j`$ add nothing).
+    /// For an in-plane energy written in $`u_{,X}, u_{,Y}, v_{,X}, v_{,Y}`$ these are the stress
+    /// resultants: $`\partial\psi/\partial u_{,X} = N_X`$, $`\partial\psi/\partial v_{,Y} = N_Y`$,
+    /// $`\partial\psi/\partial u_{,Y} = \partial\psi/\partial v_{,X} = N_{XY}`$, whatever the
+    /// model adds to the strain. Returns `result[entry][element]`.
+    pub fn element_mean_conjugates(&self, global: &[f64], entries: &[JetEntry]) -> Vec<Vec<f64>> {
+        let per_element = self.map_elements(|e| {
+            let local = self.gather(e, global);
+            let mut jet = [0.0; MAX_JET];
+            let mut residual = [0.0; MAX_JET];
+            let mut sums = vec![0.0; entries.len()];
+            for (t, term) in self.terms.iter().enumerate() {
+                let positions: Vec<Option<usize>> = entries
+                    .iter()
+                    .map(|wanted| term.jet.iter().position(|j| j == wanted))
+                    .collect();
+                if positions.iter().all(Option::is_none) {
+                    continue;
+                }
+                let values = &self.value_sets[term.value_set].1[e];
+                let area: f64 = values.weights.iter().sum();
+                let m = term.jet.len();
+                for q in 0..values.weights.len() {
+                    self.jet_at(term, values, q, &local, &mut jet[..m]);
+                    self.model.residual(t, &jet[..m], &mut residual[..m]);
+                    for (sum, position) in sums.iter_mut().zip(&positions) {
+                        if let Some(i) = position {
+                            *sum += residual[*i] * values.weights[q] / area;
+                        }
+                    }
+                }
+            }
+            sums
+        });
+        (0..entries.len())
+            .map(|k| per_element.iter().map(|sums| sums[k]).collect())
+            .collect()
+    }
+
     /// Calls `visit(term, element, q, point, weight, jet)` at every quadrature point of every term
     /// (for diagnostics such as ellipticity checks; `f64` only).
     pub fn for_each_quadrature_point(

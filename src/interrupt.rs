@@ -1,0 +1,48 @@
+//! Ctrl-C during `wrinkle run`: the path stops after the point it is computing, and every
+//! output is written from the points completed so far (exit code [`crate::EXIT_INTERRUPTED`]).
+//!
+//! The handler ([`install`]) only sets a flag while a path is being traced or written
+//! ([`PathPhase`]); the path recorder reads it ([`requested`]) after each point. Outside that
+//! phase (the threshold search, which writes nothing) and on a second Ctrl-C the process exits
+//! at once with 130, the shell's convention for SIGINT.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+
+static REQUESTED: AtomicBool = AtomicBool::new(false);
+static PATH_ACTIVE: AtomicBool = AtomicBool::new(false);
+
+/// Installs the Ctrl-C handler (once per process; later calls do nothing).
+pub fn install() {
+    let _ = ctrlc::set_handler(|| {
+        if PATH_ACTIVE.load(Ordering::SeqCst) && !REQUESTED.swap(true, Ordering::SeqCst) {
+            eprintln!(
+                "\ninterrupt: stopping after the current point and writing every completed point (Ctrl-C again to abort)"
+            );
+        } else {
+            eprintln!("\ninterrupted");
+            std::process::exit(crate::EXIT_INTERRUPTED);
+        }
+    });
+}
+
+/// Whether the user asked to stop.
+pub fn requested() -> bool {
+    REQUESTED.load(Ordering::SeqCst)
+}
+
+/// While alive, a Ctrl-C asks the path to stop instead of ending the process.
+pub struct PathPhase(());
+
+impl PathPhase {
+    /// Enters the phase.
+    pub fn enter() -> Self {
+        PATH_ACTIVE.store(true, Ordering::SeqCst);
+        PathPhase(())
+    }
+}
+
+impl Drop for PathPhase {
+    fn drop(&mut self) {
+        PATH_ACTIVE.store(false, Ordering::SeqCst);
+    }
+}

@@ -1,0 +1,99 @@
+//! The same numbers on a laptop and a workstation: `buckle` and a short `run` with 1 and 2
+//! worker threads give bit-for-bit the same JSON and files (assembly sums in an element-colour
+//! order fixed by the mesh, not by the thread count). Only wall-clock times may differ.
+
+use serde_json::Value;
+use std::path::Path;
+use std::process::Command;
+
+fn wrinkle(arguments: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_wrinkle"))
+        .args(arguments)
+        .output()
+        .unwrap()
+}
+
+/// Removes wall-clock times and the output directory (which differs by construction).
+fn without_times(value: &mut Value) {
+    match value {
+        Value::Object(map) => {
+            for key in ["seconds", "timings", "directory", "files"] {
+                map.remove(key);
+            }
+            map.values_mut().for_each(without_times);
+        }
+        Value::Array(items) => items.iter_mut().for_each(without_times),
+        _ => {}
+    }
+}
+
+fn json_file(path: &Path) -> Value {
+    let mut value: Value = serde_json::from_slice(&std::fs::read(path).unwrap()).unwrap();
+    without_times(&mut value);
+    value
+}
+
+#[test]
+fn buckle_on_one_and_two_threads_gives_identical_json() {
+    let outputs: Vec<Value> = ["1", "2"]
+        .iter()
+        .map(|threads| {
+            let output = wrinkle(&["--threads", threads, "buckle", "--quiet", "--json"]);
+            assert_eq!(output.status.code(), Some(0));
+            let mut value: Value = serde_json::from_slice(&output.stdout).unwrap();
+            without_times(&mut value);
+            value
+        })
+        .collect();
+    assert!(outputs[0]["critical_load"].as_f64().unwrap() > 0.0);
+    assert_eq!(outputs[0], outputs[1]);
+}
+
+#[test]
+fn run_on_one_and_two_threads_writes_identical_files() {
+    let root = tempfile_root("threads_identical");
+    let directories: Vec<_> = ["1", "2"]
+        .iter()
+        .map(|threads| {
+            let directory = root.join(format!("threads_{threads}"));
+            let output = wrinkle(&[
+                "--threads",
+                threads,
+                "run",
+                "--quiet",
+                "--out",
+                directory.to_str().unwrap(),
+                "--set",
+                "solver.max_amplitude_over_h=1",
+                "--set",
+                "output.plots=false",
+                "--set",
+                "output.surface=false",
+            ]);
+            assert_eq!(
+                output.status.code(),
+                Some(0),
+                "{}",
+                String::from_utf8_lossy(&output.stderr)
+            );
+            directory
+        })
+        .collect();
+    // (`scene.toml` differs by its output directory only.)
+    for file in ["path.csv", "fields_final.vtu"] {
+        let first = std::fs::read(directories[0].join(file)).unwrap();
+        let second = std::fs::read(directories[1].join(file)).unwrap();
+        assert!(first == second, "{file} differs between 1 and 2 threads");
+    }
+    let summary = json_file(&directories[0].join("summary.json"));
+    assert!(summary["path"].as_array().unwrap().len() > 10);
+    assert_eq!(summary, json_file(&directories[1].join("summary.json")));
+    let _ = std::fs::remove_dir_all(&root);
+}
+
+fn tempfile_root(name: &str) -> std::path::PathBuf {
+    let root = std::env::temp_dir().join(format!("wrinkle_{name}_{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&root);
+    std::fs::create_dir_all(&root).unwrap();
+    root
+}
