@@ -125,10 +125,16 @@ impl<M: EnergyModel> Assembler<M> {
             .iter()
             .map(|nodes| dofs.element_dofs(nodes))
             .collect();
-        let pattern = Arc::new(SparsityPattern::from_element_dofs(
-            dofs.free_count,
-            element_dofs.iter().map(|d| d.as_slice()),
-        ));
+        let couplings = field_couplings(spec);
+        let nf = dofs.field_count;
+        let pattern = Arc::new(
+            SparsityPattern::try_from_coupled_element_dofs(
+                dofs.free_count,
+                element_dofs.iter().map(|d| d.as_slice()),
+                |a, b| couplings[(a % nf) * nf + b % nf],
+            )
+            .expect("dof indices come from the dof map"),
+        );
         let element_slots = element_dofs
             .iter()
             .map(|d| pattern.element_slots(d))
@@ -645,6 +651,27 @@ impl<M: EnergyModel> Assembler<M> {
             }
         }
     }
+}
+
+/// Which pairs of fields the tangent couples: `coupled[f * nf + g]` is true when some term's
+/// structurally non-zero Hessian entry [`TermSpec::tangent_pattern`](crate::model::TermSpec)
+/// joins a jet entry of field `f` with one of field `g` (symmetric; the diagonal always). A
+/// block of the tangent between two fields no term couples (the plate's in-plane displacements
+/// and rotations) is identically zero and is left out of the sparsity pattern.
+pub fn field_couplings(spec: &crate::model::ModelSpec) -> Vec<bool> {
+    let nf = spec.fields.len();
+    let mut coupled = vec![false; nf * nf];
+    for f in 0..nf {
+        coupled[f * nf + f] = true;
+    }
+    for term in spec.terms {
+        for &(i, j) in term.tangent_pattern {
+            let (f, g) = (spec.jet[term.jet[i]].field, spec.jet[term.jet[j]].field);
+            coupled[f * nf + g] = true;
+            coupled[g * nf + f] = true;
+        }
+    }
+    coupled
 }
 
 /// Where one taped term's points live inside an element's block of a [`TaylorTape`].

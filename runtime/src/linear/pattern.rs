@@ -42,21 +42,38 @@ impl SparsityPattern {
         n: usize,
         elements: impl Iterator<Item = &'a [Option<usize>]>,
     ) -> Result<Self, LinearError> {
+        Self::try_from_coupled_element_dofs(n, elements, |_, _| true)
+    }
+
+    /// [`SparsityPattern::try_from_element_dofs`] keeping only the pairs of element-local dofs
+    /// $`(a, b)`$ for which `coupled(a, b)` holds (symmetric in its arguments): e.g. only the
+    /// pairs of fields some term of the energy couples, so that a field block of the tangent
+    /// that is identically zero is neither stored nor factorised.
+    pub fn try_from_coupled_element_dofs<'a>(
+        n: usize,
+        elements: impl Iterator<Item = &'a [Option<usize>]>,
+        coupled: impl Fn(usize, usize) -> bool,
+    ) -> Result<Self, LinearError> {
         let mut columns: Vec<Vec<usize>> = (0..n).map(|column| vec![column]).collect();
         let mut free = Vec::new();
         for dofs in elements {
             free.clear();
-            for dof in dofs.iter().flatten() {
-                if *dof >= n {
+            for (local, dof) in dofs.iter().enumerate() {
+                let Some(dof) = *dof else { continue };
+                if dof >= n {
                     return Err(LinearError::IndexOutOfRange {
-                        index: *dof,
+                        index: dof,
                         dimension: n,
                     });
                 }
-                free.push(*dof);
+                free.push((local, dof));
             }
-            for &column in &free {
-                columns[column].extend_from_slice(&free);
+            for &(a, column) in &free {
+                columns[column].extend(
+                    free.iter()
+                        .filter(|&&(b, _)| coupled(a, b))
+                        .map(|&(_, row)| row),
+                );
             }
         }
         Ok(Self::from_columns(n, columns))
