@@ -141,5 +141,8 @@ fn main() {
     time("  taylor_commit (order 10)", 5, || {
         problem.taylor_commit(10, &increment, 0.0, &mut tape)
     });
+    time("  taylor_commit_then_residual (orders 10, 11)", 5, || {
+        problem.taylor_commit_then_residual(10, &increment, 0.0, &mut tape)
+    });
     let _ = ReferenceEnvelope::SPEC;
 }

@@ -529,6 +529,35 @@ impl<M: EnergyModel> Assembler<M> {
     /// from orders $`0..k-1`$ on the tape ([`EnergyModel::taylor_predict`]).
     pub fn taylor_predict(&self, order: usize, tape: &mut TaylorTape) -> Vec<f64> {
         assert!(order >= 1 && order < tape.stride, "order outside the tape");
+        self.taylor_commit_and_predict(order, None, tape)
+    }
+
+    /// [`Self::taylor_commit`] at order $`k`$ (the increment's global nodal values, prescribed
+    /// entries included) followed by [`Self::taylor_predict`] at order $`k + 1`$, in **one**
+    /// sweep over the tape: each point's history is read while still in cache, and the tape —
+    /// the largest array of a step (dofs × orders) — is streamed once per order instead of
+    /// twice. Returns the order-$`(k+1)`$ prediction.
+    pub fn taylor_commit_then_predict(
+        &self,
+        order: usize,
+        increment: &[f64],
+        tape: &mut TaylorTape,
+    ) -> Vec<f64> {
+        assert!(
+            order >= 1 && order + 1 < tape.stride,
+            "order outside the tape"
+        );
+        self.taylor_commit_and_predict(order + 1, Some((order, increment)), tape)
+    }
+
+    /// Prediction at `order`, after an optional commit of `(order − 1, increment)` at each
+    /// point (see [`Self::taylor_commit_then_predict`]).
+    fn taylor_commit_and_predict(
+        &self,
+        order: usize,
+        commit: Option<(usize, &[f64])>,
+        tape: &mut TaylorTape,
+    ) -> Vec<f64> {
         let nf = self.dofs.field_count;
         let local_len = QUAD8_NODES * nf;
         let stride = tape.stride;
@@ -537,6 +566,8 @@ impl<M: EnergyModel> Assembler<M> {
         if tape.element_len > 0 {
             let work = |(block, forces): (&mut [f64], &mut [f64]), e: usize| {
                 let mut residual = [0.0; MAX_JET];
+                let mut jet = [0.0; MAX_JET];
+                let local = commit.map(|(_, increment)| self.gather(e, increment));
                 for entry in &layout {
                     let term = &self.terms[entry.term];
                     let values = &self.value_sets[term.value_set].1[e];
@@ -544,6 +575,16 @@ impl<M: EnergyModel> Assembler<M> {
                     let per_point = entry.slots * stride;
                     for q in 0..values.weights.len() {
                         let start = entry.offset + q * per_point;
+                        if let (Some((committed, _)), Some(local)) = (commit, &local) {
+                            self.jet_at(term, values, q, local, &mut jet[..m]);
+                            self.model.taylor_commit(
+                                entry.term,
+                                committed,
+                                &jet[..m],
+                                &mut block[start..start + per_point],
+                                stride,
+                            );
+                        }
                         self.model.taylor_predict(
                             entry.term,
                             order,

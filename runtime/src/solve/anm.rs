@@ -187,8 +187,10 @@ fn higher_order(
 }
 
 /// Computes the series of one step at `state`, whose tangent `factor` holds, with the models'
-/// Taylor-mode kernels: per order one right-hand side from the tape ($`O(k)`$ per product at
-/// every quadrature point), one solve, one commit. `tape` must hold at least `order` orders.
+/// Taylor-mode kernels: per order one solve and one sweep over the tape that commits the
+/// previous order and predicts the right-hand side of this one ($`O(k)`$ per product at every
+/// quadrature point). The last order is not committed (the tape is restarted at the next step).
+/// `tape` must hold at least `order` orders.
 /// Returns the path series (orders 0..=N) and $`\hat U`$.
 pub fn compute_series<M: EnergyModel>(
     problem: &Problem<M>,
@@ -204,12 +206,11 @@ pub fn compute_series<M: EnergyModel>(
     problem.taylor_start(&state.displacement, state.load, tape);
     // Order 1: the prediction is zero (every coefficient of order 1 is linear in U_1).
     problem.taylor_residual(1, tape);
-    problem.taylor_commit(1, &u1, lambda1, tape);
     let mut displacement = vec![state.displacement.clone(), u1];
     let mut load = vec![state.load, lambda1];
     for k in 2..=order {
         let rhs: Vec<f64> = problem
-            .taylor_residual(k, tape)
+            .taylor_commit_then_residual(k - 1, &displacement[k - 1], load[k - 1], tape)
             .iter()
             .map(|r| -r)
             .collect();
@@ -222,7 +223,6 @@ pub fn compute_series<M: EnergyModel>(
             k,
             state.load,
         )?;
-        problem.taylor_commit(k, &u_k, lambda_k, tape);
         displacement.push(u_k);
         load.push(lambda_k);
     }
