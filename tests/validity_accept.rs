@@ -72,3 +72,54 @@ fn an_unknown_model_set_by_an_override_names_the_override() {
     );
     assert!(!stderr.contains("built-in default scene"), "{stderr}");
 }
+
+/// The inputs of the issue whose wavelength breaks the envelope model's scale separation — a
+/// 1 × 1 mm plate, h = 5 mm on 400 × 200 mm, Q = 10⁶/mm (wavelength below h) — each exit 4
+/// with the check named and the wavelength quoted.
+#[test]
+fn wavelengths_outside_scale_separation_exit_4() {
+    for overrides in [
+        &["geometry.lx=1", "geometry.ly=1"][..],
+        &["material.thickness=5"][..],
+        &["model.wavenumber=1e6"][..],
+    ] {
+        let mut arguments = vec!["buckle", "-q"];
+        for o in overrides {
+            arguments.extend(["--set", o]);
+        }
+        let (code, stdout, stderr) = wrinkle(&arguments);
+        assert_eq!(code, Some(4), "{overrides:?}: {stdout}{stderr}");
+        assert!(
+            stdout.contains("warning (scale_separation): wavelength"),
+            "{overrides:?}: {stdout}"
+        );
+    }
+}
+
+/// The global wavenumber search: the critical load grows with the tension N_Y over six decades
+/// (it used to be 9.8e-4 at N_Y = 0 and 1.3e-7 at N_Y = 1e-8, from a search bracketed around
+/// eq. 44). At small N_Y the wavelength is not small against the domain: accepted here.
+#[test]
+fn critical_load_grows_with_the_tension_over_six_decades() {
+    let mut previous = 0.0;
+    for tension in ["0", "1e-6", "1e-4", "1e-2", "1"] {
+        let (code, stdout, stderr) = wrinkle(&[
+            "buckle",
+            "-q",
+            "--json",
+            "--set",
+            &format!("load.tension_y={tension}"),
+            "--set",
+            "validity.accept=scale_separation",
+        ]);
+        assert_eq!(code, Some(0), "N_Y = {tension}: {stderr}");
+        let json: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+        let critical = json["critical_load"].as_f64().unwrap();
+        assert!(critical.is_finite() && critical > 0.0);
+        assert!(
+            critical >= previous * (1.0 - 1e-9),
+            "N_Y = {tension}: λ_c = {critical:e} below {previous:e}"
+        );
+        previous = critical;
+    }
+}
