@@ -702,7 +702,7 @@ fn summary_json(context: &RunContext, trace: &Trace, outcome: &RunOutcome) -> se
             "series_step_length": s.series_step_length, "pade_step_length": s.pade_step_length,
             "end_residual": s.end_residual, "correction_iterations": s.correction_iterations,
             "geometric_radius": s.geometric_radius, "predicted_bifurcation": s.predicted_bifurcation,
-            "negative_pivots": s.negative_pivots,
+            "negative_pivots": s.negative_pivots, "completed": s.completed,
         })).collect::<Vec<_>>(),
         "vtu": vtu_files(context.scene, trace),
         "path": trace.points,

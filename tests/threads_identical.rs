@@ -87,6 +87,14 @@ fn run_on_one_and_two_threads_writes_identical_files() {
     }
     let summary = json_file(&directories[0].join("summary.json"));
     assert!(summary["path"].as_array().unwrap().len() > 10);
+    // One `anm_steps` entry per counted step, the last one possibly ended inside.
+    let steps = summary["anm_steps"].as_array().unwrap();
+    assert_eq!(steps.len() as u64, summary["steps"].as_u64().unwrap());
+    assert!(
+        steps[..steps.len() - 1]
+            .iter()
+            .all(|s| s["completed"] == true)
+    );
     assert_eq!(summary, json_file(&directories[1].join("summary.json")));
     let _ = std::fs::remove_dir_all(&root);
 }

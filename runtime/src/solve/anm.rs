@@ -123,6 +123,9 @@ pub struct AnmStep {
     /// Negative eigenvalues of the tangent at the step's start (`None` when the factorisation
     /// gives no inertia, i.e. after LU).
     pub negative_pivots: Option<usize>,
+    /// `false` for a last step the stop criterion ended at one of its interior points: its
+    /// `load_range` ends there, and `steps` of the path statistics counts it.
+    pub completed: bool,
 }
 
 /// Order 1 of a step: $`\hat U = K_t^{-1}F`$, $`\lambda_1 = \pm(1+\|\hat U\|^2)^{-1/2}`$, the sign
@@ -414,19 +417,7 @@ impl<M: EnergyModel> AnmRun<'_, M> {
             let use_pade = pade_length.is_some_and(|l| l > plain && a > plain);
             evaluate(&series, if use_pade { pade.as_ref() } else { None }, a)
         };
-        if let Some(stop) =
-            self.dense_output(step, end.step_length, &evaluator, predicted, observer)
-        {
-            return Ok(Some(stop));
-        }
-        if let Some(p) = self.prediction
-            && self.bifurcation.is_none()
-            && end.state.load >= p
-            && self.state.load < p
-        {
-            self.bifurcation = Some((p, step));
-        }
-        steps_log.push(AnmStep {
+        let mut record = AnmStep {
             step,
             load_range: (self.state.load, end.state.load),
             step_length: end.step_length,
@@ -437,7 +428,25 @@ impl<M: EnergyModel> AnmRun<'_, M> {
             geometric_radius: geometric_ratio(&series),
             predicted_bifurcation: predicted,
             negative_pivots: self.negative_pivots,
-        });
+            completed: true,
+        };
+        if let Some(stop) =
+            self.dense_output(step, end.step_length, &evaluator, predicted, observer)
+        {
+            // Stopped at an interior point: the step is logged up to there.
+            record.load_range.1 = self.state.load;
+            record.completed = false;
+            steps_log.push(record);
+            return Ok(Some(stop));
+        }
+        if let Some(p) = self.prediction
+            && self.bifurcation.is_none()
+            && end.state.load >= p
+            && self.state.load < p
+        {
+            self.bifurcation = Some((p, step));
+        }
+        steps_log.push(record);
         self.statistics.steps = step;
         // The next step continues the path tangent at this step's end (not at its start: past a
         // sharp turn the two can point apart).
