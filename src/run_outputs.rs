@@ -598,6 +598,22 @@ fn warnings(context: &RunContext, trace: &Trace) -> Vec<Warning> {
             ),
         ));
     }
+    if let Some(step) = trace
+        .anm_steps
+        .iter()
+        .find(|s| s.negative_pivots.is_some_and(|n| n > 0))
+    {
+        warnings.push(Warning::new(
+            Severity::Warning,
+            "unstable branch",
+            format!(
+                "the tangent had {} negative eigenvalue(s) at the start of step {} (λ = {}): the path is on an unstable equilibrium branch — past a secondary bifurcation, or a step jumped over one (a tighter solver.series_tolerance tells which)",
+                step.negative_pivots.unwrap_or(0),
+                step.step,
+                context.load_quantity().format_value(step.load_range.0)
+            ),
+        ));
+    }
     for note in &context.threshold.notes {
         warnings.push(Warning::new(Severity::Note, "note", note.clone()));
     }
