@@ -279,7 +279,7 @@ impl ValiditySpec {
 }
 
 /// A complete, validated description of one computation.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct Scene {
     /// Table `[geometry]`.
     pub geometry: Geometry,
@@ -302,6 +302,22 @@ pub struct Scene {
     /// Keys set by `--set`, each with the assignment that set it last: an error about such a
     /// key names the override, not the file ([`Scene::origin_of`]).
     pub overridden: BTreeMap<String, String>,
+}
+
+/// Two scenes are equal when they describe the same computation: where their keys were set
+/// ([`Scene::overridden`]) does not matter.
+impl PartialEq for Scene {
+    fn eq(&self, other: &Self) -> bool {
+        self.geometry == other.geometry
+            && self.material == other.material
+            && self.model == other.model
+            && self.mesh == other.mesh
+            && self.load == other.load
+            && self.solver == other.solver
+            && self.output == other.output
+            && self.validity == other.validity
+            && self.source == other.source
+    }
 }
 
 impl Default for Scene {

@@ -352,6 +352,8 @@ fn effective_toml_round_trips() {
         "output.directory=\"out dir/with \\\"quotes\\\"\"",
         "solver.pade=true",
         "mesh.grading=3.5",
+        "output.surface=false",
+        "validity.accept=[\"ellipticity\", \"mode_resolution\"]",
     ] {
         scene
             .apply_override(assignment)
