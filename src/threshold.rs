@@ -124,6 +124,7 @@ pub fn find_threshold<M: EnergyModel>(
 ) -> Result<Threshold, Error> {
     let start = std::time::Instant::now();
     let layout = layout_of::<M>(scene)?;
+    require_free_primary_dofs(scene, problem, &layout, M::SPEC.fields[layout.primary])?;
     let has_wavenumber = M::SPEC.parameter_index("wavenumber").is_some();
     let mut notes = Vec::new();
     if !has_wavenumber && matches!(scene.model.wavenumber, Wavenumber::Fixed(_)) {
@@ -193,6 +194,33 @@ pub fn find_threshold<M: EnergyModel>(
     ));
     threshold.seconds = start.elapsed().as_secs_f64();
     Ok(threshold)
+}
+
+/// A scene error naming `mesh.nx` when the primary field (the deflection or envelope) has no
+/// free dof: on a 1 × 1 Q8 mesh every node lies on the clamped boundary, so $`w \equiv 0`$ and
+/// there is nothing to buckle. Without this check the eigen-solver reports "no positive
+/// buckling load factor … the load does not compress the structure", the wrong reason.
+fn require_free_primary_dofs<M: EnergyModel>(
+    scene: &Scene,
+    problem: &Problem<M>,
+    layout: &Layout,
+    field: &str,
+) -> Result<(), Error> {
+    let dofs = problem.dofs();
+    let free = (0..problem.free_count())
+        .filter(|&i| dofs.global_of_free(i) % layout.field_count == layout.primary)
+        .count();
+    if free > 0 {
+        return Ok(());
+    }
+    Err(Error::scene(
+        format!("scene {}", scene.source),
+        "mesh.nx",
+        format!(
+            "a {} × {} mesh leaves no free value of `{field}`: every Q8 node lies on the clamped boundary, so there is no mode to buckle; use at least 2 elements along one side",
+            scene.mesh.elements_x, scene.mesh.elements_y
+        ),
+    ))
 }
 
 /// Whether the model's envelope has a phase (a field of role `envelope_imaginary`).
@@ -309,9 +337,9 @@ fn search_wavenumber<M: EnergyModel>(
         progress.evaluation(count, &detail);
     };
     let nu = scene.material.poisson_ratio;
-    let poisson_hint = if nu < -0.9 {
+    let poisson_hint = if nu <= -0.9 {
         format!(
-            " With ν = {nu} the in-plane problem is nearly singular (area modulus E/(2(1−ν)) against shear modulus E/(2(1+ν)), ratio 1:{:.0}): Newton stalls at round-off; ν ≥ −0.9 is solved.",
+            " With ν = {nu} the in-plane problem is nearly singular (area modulus E/(2(1−ν)) against shear modulus E/(2(1+ν)), ratio 1:{:.0}): Newton stalls at round-off more than 100 times above its tolerance; ν ≥ −0.99 is solved on example 1 at 32 × 16 (finer meshes are worse conditioned).",
             (1.0 - nu) / (1.0 + nu)
         )
     } else {
