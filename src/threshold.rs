@@ -366,6 +366,9 @@ fn search_wavenumber<M: EnergyModel>(
         search.parameter, search.buckling.critical_loads[0]
     ));
     let at_lower_end = search.parameter <= range.0 * 1.05;
+    if at_lower_end && M::SPEC.name == "reference-envelope" {
+        notes.push(long_wavelength_end_note(scene, search.parameter));
+    }
     if !at_lower_end || M::SPEC.name == "reference-envelope" {
         let outcome = (
             search.buckling,
@@ -386,6 +389,31 @@ fn search_wavenumber<M: EnergyModel>(
         buckle_at_wavenumber(scene, problem, factor, quiet, notes, q)?;
     let outcome = (buckling, ellipticity, q, search.evaluations, shift);
     Ok((outcome, "auto (reference-envelope)".into()))
+}
+
+/// Why the reference envelope's $`\lambda_c(Q)`$ can still fall at the long-wavelength end of
+/// the search: in eq. (42), written $`\lambda(s) = (Ds^2 + as + b)/(s + c)`$ in $`s = Q^2`$, the
+/// minimiser is $`s^* = -c + \sqrt{c^2 + (b - ac)/D}`$, which is below $`(2\pi/L_\min)^2`$ when
+/// the tension is weak or the compressed side short, and does not exist when
+/// $`N_Y \le D\pi^2/L_X^2\,(6L_Y^2/L_X^2 + 2)`$: then the sheet buckles in one global bulge,
+/// not in wrinkles, and the $`Q`$ where the search stopped depends on the mesh (measured on
+/// $`L_Y/L_X = 10`$: 0.154 N/mm on 12 × 12, 0.137 on 24 × 24).
+fn long_wavelength_end_note(scene: &Scene, q: f64) -> String {
+    let detail = match closed_form_threshold(scene) {
+        Some((_, exact)) => format!(
+            "eq. 42's minimiser on this rectangle is Q = {exact:.4e} 1/mm (wavelength {:.4e} mm)",
+            2.0 * PI / exact
+        ),
+        None if scene.load.kind == LoadKind::Biaxial => {
+            "eq. 42 has no minimum on this rectangle: the tension N_Y is at most Dπ²/L_X²·(6L_Y²/L_X² + 2), so λ(Q) falls all the way to Q = 0".to_string()
+        }
+        None => "the closed form does not apply to this load".to_string(),
+    };
+    format!(
+        "λ_c(Q) still falls at the long-wavelength end of the search (Q = {q:.4e} 1/mm, wavelength {:.4e} mm, the shorter side is {} mm): no wrinkle wavelength is selected inside the domain — {detail}; the sheet buckles globally rather than wrinkling, and the reported Q and λ_c depend on where the search stopped (mesh-dependent)",
+        2.0 * PI / q,
+        scene.geometry.length_x.min(scene.geometry.length_y)
+    )
 }
 
 /// The global search on a half mesh, then the local refinement on `problem` (module

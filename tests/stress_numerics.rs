@@ -238,6 +238,7 @@ fn record_threshold(row: &mut Row, scene: &Scene, threshold: &Threshold) {
         .warnings
         .iter()
         .map(|w| w.message.clone())
+        .chain(threshold.notes.iter().map(|n| format!("note: {n}")))
         .collect::<Vec<_>>()
         .join(" | ");
     row.problems.extend(non_finite_in_threshold(threshold));
@@ -499,6 +500,11 @@ fn reduced_cases() -> Vec<Case> {
             Buckle,
             &with(&coarse, &[model(name)]),
         ));
+        cases.push(case(
+            &format!("run {name}"),
+            Run,
+            &with(&with(&mesh(8, 4), &short_run(20)), &[model(name)]),
+        ));
     }
     cases
 }
@@ -589,6 +595,14 @@ fn full_cases() -> Vec<Case> {
             ),
         ));
     }
+    cases.push(case(
+        "run fvk-plate 64x32",
+        Run,
+        &with(
+            &mesh(64, 32),
+            &[model("fvk-plate"), s("solver.max_amplitude_over_h=0.5")],
+        ),
+    ));
     cases.push(case(
         "run riks order-free",
         Run,
@@ -730,6 +744,14 @@ fn reduced_sweep() {
     let fine = row_of(&rows, "example one 64x32 at Q_c");
     let excess = fine.ratio_to_eq42.unwrap() - 1.0;
     assert!((0.0..=1e-6).contains(&excess), "{excess:e}");
+    // No wavelength selection inside the domain (eq. 42 has no minimum): warned and explained.
+    let short = row_of(&rows, "aspect 10");
+    assert!(short.warnings.iter().any(|w| w == "scale_separation"));
+    assert!(
+        short.message.contains("eq. 42 has no minimum"),
+        "{}",
+        short.message
+    );
     let single = row_of(&rows, "mesh 1x1");
     assert!(single.outcome == "error(exit 2)" && single.message.contains("mesh.nx"));
     let beyond = row_of(&rows, "mesh beyond memory");
