@@ -242,7 +242,7 @@ fn record_threshold(row: &mut Row, scene: &Scene, threshold: &Threshold) {
         .collect::<Vec<_>>()
         .join(" | ");
     row.problems.extend(non_finite_in_threshold(threshold));
-    if !(critical > 0.0) {
+    if critical.is_nan() || critical <= 0.0 {
         row.problems
             .push(format!("critical load {critical} is not positive"));
     }
