@@ -315,21 +315,12 @@ fn run_path_case(row: &mut Row, scene: &Scene) {
             .zip(critical)
             .map(|(exact, c)| c / exact);
     }
-    row.outcome = match &report.outcome {
-        RunOutcome::Reached => "run:reached".into(),
-        RunOutcome::Failed(why) => {
-            row.message = why.clone();
-            "run:failed".into()
-        }
-        RunOutcome::Incomplete(why) => {
-            row.message = why.clone();
-            "run:incomplete".into()
-        }
-        RunOutcome::Invalid(why) => {
-            row.message = why.clone();
-            "run:invalid".into()
-        }
-    };
+    // From the summary's `outcome` key and the outcome's Debug text (which carries the
+    // reason), so that a new outcome variant needs no change here.
+    row.outcome = format!("run:{}", summary["outcome"].as_str().unwrap_or("unknown"));
+    if report.outcome != RunOutcome::Reached {
+        row.message = format!("{:?}", report.outcome);
+    }
     if !critical.is_some_and(|c| c.is_finite() && c > 0.0) {
         row.problems.push(format!(
             "linear buckling load {:?} is not a positive number",
