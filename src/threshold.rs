@@ -124,6 +124,7 @@ pub fn find_threshold<M: EnergyModel>(
 ) -> Result<Threshold, Error> {
     let start = std::time::Instant::now();
     let layout = layout_of::<M>(scene)?;
+    require_free_primary_dofs(scene, problem, &layout, M::SPEC.fields[layout.primary])?;
     let has_wavenumber = M::SPEC.parameter_index("wavenumber").is_some();
     let mut notes = Vec::new();
     if !has_wavenumber && matches!(scene.model.wavenumber, Wavenumber::Fixed(_)) {
@@ -193,6 +194,33 @@ pub fn find_threshold<M: EnergyModel>(
     ));
     threshold.seconds = start.elapsed().as_secs_f64();
     Ok(threshold)
+}
+
+/// A scene error naming `mesh.nx` when the primary field (the deflection or envelope) has no
+/// free dof: on a 1 × 1 Q8 mesh every node lies on the clamped boundary, so $`w \equiv 0`$ and
+/// there is nothing to buckle. Without this check the eigen-solver reports "no positive
+/// buckling load factor … the load does not compress the structure", the wrong reason.
+fn require_free_primary_dofs<M: EnergyModel>(
+    scene: &Scene,
+    problem: &Problem<M>,
+    layout: &Layout,
+    field: &str,
+) -> Result<(), Error> {
+    let dofs = problem.dofs();
+    let free = (0..problem.free_count())
+        .filter(|&i| dofs.global_of_free(i) % layout.field_count == layout.primary)
+        .count();
+    if free > 0 {
+        return Ok(());
+    }
+    Err(Error::scene(
+        format!("scene {}", scene.source),
+        "mesh.nx",
+        format!(
+            "a {} × {} mesh leaves no free value of `{field}`: every Q8 node lies on the clamped boundary, so there is no mode to buckle; use at least 2 elements along one side",
+            scene.mesh.elements_x, scene.mesh.elements_y
+        ),
+    ))
 }
 
 /// Whether the model's envelope has a phase (a field of role `envelope_imaginary`).
@@ -308,15 +336,7 @@ fn search_wavenumber<M: EnergyModel>(
         };
         progress.evaluation(count, &detail);
     };
-    let nu = scene.material.poisson_ratio;
-    let poisson_hint = if nu < -0.9 {
-        format!(
-            " With ν = {nu} the in-plane problem is nearly singular (area modulus E/(2(1−ν)) against shear modulus E/(2(1+ν)), ratio 1:{:.0}): Newton stalls at round-off; ν ≥ −0.9 is solved.",
-            (1.0 - nu) / (1.0 + nu)
-        )
-    } else {
-        String::new()
-    };
+    let poisson_hint = poisson_hint(scene);
     let fail = |e: String| {
         Error::Solver(format!(
             "wavenumber search of `{}` over Q in [{:.3e}, {:.3e}] 1/mm (wavelengths from {:.3e} to {:.3e} mm): {e}. \
@@ -338,6 +358,9 @@ fn search_wavenumber<M: EnergyModel>(
         search.parameter, search.buckling.critical_loads[0]
     ));
     let at_lower_end = search.parameter <= range.0 * 1.05;
+    if at_lower_end && M::SPEC.name == "reference-envelope" {
+        notes.push(long_wavelength_end_note(scene, search.parameter));
+    }
     if !at_lower_end || M::SPEC.name == "reference-envelope" {
         let outcome = (
             search.buckling,
@@ -358,6 +381,46 @@ fn search_wavenumber<M: EnergyModel>(
         buckle_at_wavenumber(scene, problem, factor, quiet, notes, q)?;
     let outcome = (buckling, ellipticity, q, search.evaluations, shift);
     Ok((outcome, "auto (reference-envelope)".into()))
+}
+
+/// Why the reference envelope's $`\lambda_c(Q)`$ can still fall at the long-wavelength end of
+/// the search: in eq. (42), written $`\lambda(s) = (Ds^2 + as + b)/(s + c)`$ in $`s = Q^2`$, the
+/// minimiser is $`s^* = -c + \sqrt{c^2 + (b - ac)/D}`$, which is below $`(2\pi/L_\min)^2`$ when
+/// the tension is weak or the compressed side short, and does not exist when
+/// $`N_Y \le D\pi^2/L_X^2\,(6L_Y^2/L_X^2 + 2)`$: then the sheet buckles in one global bulge,
+/// not in wrinkles, and the $`Q`$ where the search stopped depends on the mesh (measured on
+/// $`L_Y/L_X = 10`$: 0.154 N/mm on 12 × 12, 0.137 on 24 × 24).
+fn long_wavelength_end_note(scene: &Scene, q: f64) -> String {
+    let detail = match closed_form_threshold(scene) {
+        Some((_, exact)) => format!(
+            "eq. 42's minimiser on this rectangle is Q = {exact:.4e} 1/mm (wavelength {:.4e} mm)",
+            2.0 * PI / exact
+        ),
+        None if scene.load.kind == LoadKind::Biaxial => {
+            "eq. 42 has no minimum on this rectangle: the tension N_Y is at most Dπ²/L_X²·(6L_Y²/L_X² + 2), so λ(Q) falls all the way to Q = 0".to_string()
+        }
+        None => "the closed form does not apply to this load".to_string(),
+    };
+    format!(
+        "λ_c(Q) still falls at the long-wavelength end of the search (Q = {q:.4e} 1/mm, wavelength {:.4e} mm, the shorter side is {} mm): no wrinkle wavelength is selected inside the domain — {detail}; the sheet buckles globally rather than wrinkling, and the reported Q and λ_c depend on where the search stopped (mesh-dependent)",
+        2.0 * PI / q,
+        scene.geometry.length_x.min(scene.geometry.length_y)
+    )
+}
+
+/// A hint for auxetic sheets, $`\nu \le -0.9`$ (empty otherwise): the in-plane problem is nearly
+/// singular there and Newton stalls at round-off; measured on example 1 at 32 × 16, ν = −0.99
+/// is solved and ν = −0.999 stalls at a relative residual of 1.2e-6 (tolerance 1e-8).
+fn poisson_hint(scene: &Scene) -> String {
+    let nu = scene.material.poisson_ratio;
+    if nu <= -0.9 {
+        format!(
+            " With ν = {nu} the in-plane problem is nearly singular (area modulus E/(2(1−ν)) against shear modulus E/(2(1+ν)), ratio 1:{:.0}): Newton stalls at round-off more than 100 times above its tolerance; ν ≥ −0.99 is solved on example 1 at 32 × 16 (finer meshes are worse conditioned).",
+            (1.0 - nu) / (1.0 + nu)
+        )
+    } else {
+        String::new()
+    }
 }
 
 /// The global search on a half mesh, then the local refinement on `problem` (module
@@ -484,7 +547,10 @@ fn robust_buckling<M: EnergyModel>(
         reference_threshold(scene, quiet).ok().map(|(_, l)| l)
     };
     let Some(guess) = guess.filter(|g| g.is_finite() && *g > 0.0) else {
-        return Err(Error::Solver(format!("linear buckling: {first}")));
+        return Err(Error::Solver(format!(
+            "linear buckling: {first}{}",
+            poisson_hint(scene)
+        )));
     };
     let shift = SHIFT_FRACTION * guess;
     let shifted = LinearBucklingOptions {
@@ -493,7 +559,8 @@ fn robust_buckling<M: EnergyModel>(
     };
     let buckling = linear_buckling(problem, factor, &shifted).map_err(|second| {
         Error::Solver(format!(
-            "linear buckling: about λ = 0: {first}; about λ = {shift:.6e} (0.8 × the reference envelope's threshold): {second}"
+            "linear buckling: about λ = 0: {first}; about λ = {shift:.6e} (0.8 × the reference envelope's threshold): {second}{}",
+            poisson_hint(scene)
         ))
     })?;
     notes.push(format!(
