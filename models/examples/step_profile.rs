@@ -144,7 +144,10 @@ fn main() {
         problem.taylor_commit(middle, &increment, 0.0, &mut tape)
     });
     time(
-        &format!("  taylor_commit_then_residual (orders {middle}, {})", middle + 1),
+        &format!(
+            "  taylor_commit_then_residual (orders {middle}, {})",
+            middle + 1
+        ),
         5,
         || problem.taylor_commit_then_residual(middle, &increment, 0.0, &mut tape),
     );
