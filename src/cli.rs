@@ -18,8 +18,9 @@ use std::path::{Path, PathBuf};
 #[derive(Debug, Parser)]
 #[command(name = "wrinkle", version, about)]
 pub struct Cli {
-    /// Worker threads for assembly and factorisation (default: one per core). Results do not
-    /// depend on it: every sum is taken in an order fixed by the mesh.
+    /// Worker threads for assembly and the ANM's series sweeps (default: one per core; the
+    /// sparse factorisation is sequential). Results do not depend on it: every sum is taken in
+    /// an order fixed by the mesh.
     #[arg(long, global = true, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=1024))]
     pub threads: Option<u16>,
     /// What to do.

@@ -367,7 +367,7 @@ fn search_wavenumber<M: EnergyModel>(
             search.ellipticity,
             search.parameter,
             search.evaluations,
-            0.0,
+            search.reference_load,
         );
         return Ok((outcome, "auto".into()));
     }
@@ -455,6 +455,7 @@ fn two_level_search<M: EnergyModel>(
                 range: (q / LOCAL_BRACKET, q * LOCAL_BRACKET),
                 scan_points: 3,
                 relative_tolerance: FINE_RELATIVE_TOLERANCE,
+                load_guess: first.buckling.critical_loads.first().copied(),
                 ..options.clone()
             };
             let mut fine =

@@ -8,6 +8,19 @@
 //! **warm-started** from its neighbour — the pre-buckling state as Newton's initial guess, the
 //! mode as the Lanczos start vector — so a scan costs a small multiple of one analysis.
 //!
+//! **Shifted analyses.** In the refinement (and in a scan given a load guess), each analysis
+//! linearises about
+//! $`\sigma = `$ [`WavenumberSearchOptions::shift_fraction`] times the last accepted critical
+//! load instead of 0: shift-invert about $`\sigma`$ makes the wanted load factor the dominant
+//! end of the spectrum (on the strip of example 2 the unshifted Lanczos needs hundreds of
+//! iterations). The shift is used only when the tangent at $`\sigma`$ is positive definite (no
+//! negative pivot in its factorisation): the pre-buckling tangent is affine in $`\lambda`$ and
+//! positive definite at 0, so by Sylvester's law of inertia no critical load lies in
+//! $`(0, \sigma]`$ and the smallest positive load factor about $`\sigma`$ is still the first
+//! critical load. Otherwise the evaluation is redone about the caller's reference load. The
+//! first evaluation is shifted too when the caller has a guess
+//! ([`WavenumberSearchOptions::load_guess`], e.g. the threshold on a coarser mesh).
+//!
 //! **Accuracy the load can carry.** $`\lambda_c(Q)`$ is flat to second order at its minimum: a
 //! relative error $`\delta`$ in $`Q`$ changes $`\lambda_c`$ by $`O(\delta^2)`$, so $`Q`$ is located to
 //! [`WavenumberSearchOptions::relative_tolerance`] ($`10^{-4}`$ by default, $`\lambda_c`$ to about
@@ -44,6 +57,12 @@ pub struct WavenumberSearchOptions {
     pub max_violated_fraction: f64,
     /// Settings of each linear buckling analysis.
     pub buckling: LinearBucklingOptions,
+    /// Shift of each analysis after the first, as a fraction of the last accepted critical
+    /// load (see the module documentation); 0 disables shifting.
+    pub shift_fraction: f64,
+    /// A guess of the critical load (e.g. from a coarser mesh) that lets the first evaluation
+    /// be shifted too.
+    pub load_guess: Option<f64>,
 }
 
 impl Default for WavenumberSearchOptions {
@@ -58,6 +77,8 @@ impl Default for WavenumberSearchOptions {
             relative_tolerance: 1e-4,
             max_violated_fraction: 1e-2,
             buckling,
+            shift_fraction: 0.8,
+            load_guess: None,
         }
     }
 }
@@ -86,6 +107,8 @@ pub struct WavenumberSearch {
     pub buckling: LinearBuckling,
     /// Legendre–Hadamard check at the critical load.
     pub ellipticity: EllipticityReport,
+    /// The load `buckling` linearised about (its pre-buckling state is at this load).
+    pub reference_load: f64,
     /// Every evaluation, in order.
     pub evaluations: Vec<WavenumberEvaluation>,
 }
@@ -136,7 +159,9 @@ struct Searcher<'a, M: EnergyModel> {
     evaluations: Vec<WavenumberEvaluation>,
     warm_state: Option<Vec<f64>>,
     warm_mode: Option<Vec<f64>>,
-    best: Option<(f64, LinearBuckling, EllipticityReport)>,
+    /// The last accepted critical load (the next evaluation's shift is a fraction of it).
+    last_load: Option<f64>,
+    best: Option<(f64, LinearBuckling, EllipticityReport, f64)>,
     scanning: bool,
 }
 
@@ -151,7 +176,7 @@ impl<M: EnergyModel> Searcher<'_, M> {
             scan: self.scanning,
         };
         let value = match self.analyse(parameter) {
-            Ok((buckling, ellipticity)) => {
+            Ok((buckling, ellipticity, reference)) => {
                 record.eigen_iterations = buckling.eigen_iterations;
                 let load = buckling.critical_loads[0];
                 self.warm_state = Some(buckling.prebuckling.clone());
@@ -167,12 +192,13 @@ impl<M: EnergyModel> Searcher<'_, M> {
                     f64::INFINITY
                 } else {
                     record.critical_load = Some(load);
+                    self.last_load = Some(load);
                     if self
                         .best
                         .as_ref()
-                        .is_none_or(|(_, b, _)| load < b.critical_loads[0])
+                        .is_none_or(|(_, b, _, _)| load < b.critical_loads[0])
                     {
-                        self.best = Some((parameter, buckling, ellipticity));
+                        self.best = Some((parameter, buckling, ellipticity, reference));
                     }
                     load
                 }
@@ -187,18 +213,40 @@ impl<M: EnergyModel> Searcher<'_, M> {
         value
     }
 
+    /// The analysis at `parameter`, about a shift when one is safe (module documentation),
+    /// with the load it linearised about.
     fn analyse(
         &mut self,
         parameter: f64,
-    ) -> Result<(LinearBuckling, EllipticityReport), SolveError> {
+    ) -> Result<(LinearBuckling, EllipticityReport, f64), SolveError> {
         set_model_parameter(self.problem, self.options.parameter, parameter)?;
         let mut options = self.options.buckling.clone();
         options.initial_state = self.warm_state.clone();
         options.eigen.start = self.warm_mode.clone();
+        // Not during a wide scan (neighbours decades apart, where λ_c varies too much for the
+        // shift to stay below it), unless the caller's guess says where λ_c is.
+        let wide_scan = self.scanning && self.options.load_guess.is_none();
+        let shift = self
+            .last_load
+            .filter(|_| !wide_scan)
+            .map(|load| self.options.shift_fraction * load)
+            .filter(|&s| s.is_finite() && s > options.reference_load);
+        if let Some(shift) = shift {
+            let shifted = LinearBucklingOptions {
+                reference_load: shift,
+                ..options.clone()
+            };
+            if let Ok(buckling) = linear_buckling(self.problem, self.factor, &shifted)
+                && self.factor.negative_pivots() == Some(0)
+            {
+                let ellipticity = ellipticity_at_critical_load(self.problem, &buckling, shift);
+                return Ok((buckling, ellipticity, shift));
+            }
+        }
         let buckling = linear_buckling(self.problem, self.factor, &options)?;
         let ellipticity =
             ellipticity_at_critical_load(self.problem, &buckling, options.reference_load);
-        Ok((buckling, ellipticity))
+        Ok((buckling, ellipticity, options.reference_load))
     }
 }
 
@@ -233,6 +281,7 @@ pub fn minimise_critical_load<M: EnergyModel>(
         evaluations: Vec::new(),
         warm_state: None,
         warm_mode: None,
+        last_load: options.load_guess,
         best: None,
         scanning: true,
     };
@@ -247,9 +296,10 @@ pub fn minimise_critical_load<M: EnergyModel>(
         )));
     }
     // Refine in the bracket around the best scan point, warm-started from it.
-    if let Some((_, buckling, _)) = &searcher.best {
+    if let Some((_, buckling, _, _)) = &searcher.best {
         searcher.warm_state = Some(buckling.prebuckling.clone());
         searcher.warm_mode = buckling.modes.first().cloned();
+        searcher.last_load = buckling.critical_loads.first().copied();
     }
     searcher.scanning = false;
     let bracket_low = if best == 0 {
@@ -269,7 +319,7 @@ pub fn minimise_critical_load<M: EnergyModel>(
         options.relative_tolerance * scan[best],
         100,
     )?;
-    let (parameter, buckling, ellipticity) =
+    let (parameter, buckling, ellipticity, reference_load) =
         searcher.best.take().expect("an accepted evaluation exists");
     let evaluations = searcher.evaluations;
     set_model_parameter(problem, options.parameter, parameter)?;
@@ -277,6 +327,7 @@ pub fn minimise_critical_load<M: EnergyModel>(
         parameter,
         buckling,
         ellipticity,
+        reference_load,
         evaluations,
     })
 }
