@@ -184,15 +184,8 @@ pub fn execute(command: &Command) -> Result<(), Error> {
             } else {
                 print_stdout(&buckle_summary(&scene, &report))?;
             }
-            match report
-                .warnings
-                .iter()
-                .find(|w| !scene.validity.accepts(w.check))
-            {
-                Some(warning) => Err(Error::Invalid(format!(
-                    "{}: {} (`validity.accept = [\"{}\"]` accepts it)",
-                    warning.check, warning.message, warning.check
-                ))),
+            match report.validity_failure(&scene.validity) {
+                Some(reason) => Err(Error::Invalid(reason)),
                 None => Ok(()),
             }
         }

@@ -188,19 +188,10 @@ fn outcome(context: &RunContext, trace: &Trace) -> RunOutcome {
             context.scene.solver.max_amplitude_over_thickness
         ));
     }
-    let validity = &context.scene.validity;
-    if let Some(warning) = context
-        .threshold
-        .warnings
-        .iter()
-        .find(|w| !validity.accepts(w.check))
-    {
-        return RunOutcome::Invalid(format!(
-            "{}: {} (`validity.accept = [\"{}\"]` accepts it)",
-            warning.check, warning.message, warning.check
-        ));
+    match context.threshold.validity_failure(&context.scene.validity) {
+        Some(reason) => RunOutcome::Invalid(reason),
+        None => RunOutcome::Reached,
     }
-    RunOutcome::Reached
 }
 
 /// `fields_final.vtu`, `fields_load_*.vtu`, `surface_final.vtu`.

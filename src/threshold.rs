@@ -103,6 +103,20 @@ impl Threshold {
     pub fn critical_load(&self) -> f64 {
         self.buckling.critical_loads[0]
     }
+
+    /// The first failed validity check the scene does not accept (`validity.accept`), as the
+    /// reason of exit code 4 — shared by `buckle` and `run`.
+    pub fn validity_failure(&self, validity: &crate::scene::ValiditySpec) -> Option<String> {
+        self.warnings
+            .iter()
+            .find(|w| !validity.accepts(w.check))
+            .map(|w| {
+                format!(
+                    "{}: {} (`validity.accept = [\"{}\"]` accepts it)",
+                    w.check, w.message, w.check
+                )
+            })
+    }
 }
 
 /// Wavenumber range $`[2\pi/L_\min, 2\pi/(20h)]`$ (1/mm) the search scans.

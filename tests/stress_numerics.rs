@@ -622,6 +622,23 @@ fn full_cases() -> Vec<Case> {
 // ---------------------------------------------------------------------------------------------
 // Reports.
 
+/// One line per case on stderr: name, outcome, λ_c, its excess over eq. (42), time, warnings,
+/// problems.
+fn progress_line(row: &Row) -> String {
+    format!(
+        "{:<36} {:<16} λ_c {:>14} ratio−1 {:>10} {:>7.1} s {} {}",
+        row.case,
+        row.outcome,
+        number(row.critical_load),
+        row.ratio_to_eq42
+            .map(|r| format!("{:.2e}", r - 1.0))
+            .unwrap_or_default(),
+        row.seconds,
+        row.warnings.join(","),
+        row.problems.join("; ")
+    )
+}
+
 fn number(value: Option<f64>) -> String {
     value.map(|v| format!("{v:.6e}")).unwrap_or_default()
 }
@@ -710,17 +727,7 @@ fn reduced_sweep() {
         .iter()
         .map(|c| {
             let row = run_case(c);
-            eprintln!(
-                "{:<24} {:<16} λ_c {:>14} ratio−1 {:>10} {:.1} s {}",
-                row.case,
-                row.outcome,
-                number(row.critical_load),
-                row.ratio_to_eq42
-                    .map(|r| format!("{:.2e}", r - 1.0))
-                    .unwrap_or_default(),
-                row.seconds,
-                row.problems.join("; ")
-            );
+            eprintln!("{}", progress_line(&row));
             row
         })
         .collect();
@@ -775,20 +782,7 @@ fn full_sweep() {
     let mut rows = Vec::new();
     for (index, case) in cases.iter().enumerate() {
         let row = run_in_child(case, limit);
-        eprintln!(
-            "[{}/{}] {:<36} {:<16} λ_c {:>14} ratio−1 {:>10} {:>7.1} s {} {}",
-            index + 1,
-            cases.len(),
-            row.case,
-            row.outcome,
-            number(row.critical_load),
-            row.ratio_to_eq42
-                .map(|r| format!("{:.2e}", r - 1.0))
-                .unwrap_or_default(),
-            row.seconds,
-            row.warnings.join(","),
-            row.problems.join("; ")
-        );
+        eprintln!("[{}/{}] {}", index + 1, cases.len(), progress_line(&row));
         rows.push(row);
         write_reports("full_sweep", &rows);
     }

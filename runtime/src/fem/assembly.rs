@@ -639,16 +639,23 @@ impl<M: EnergyModel> Assembler<M> {
     /// $`\partial\psi/\partial u_{,Y} = \partial\psi/\partial v_{,X} = N_{XY}`$, whatever the
     /// model adds to the strain. Returns `result[entry][element]`.
     pub fn element_mean_conjugates(&self, global: &[f64], entries: &[JetEntry]) -> Vec<Vec<f64>> {
+        // Where each requested entry sits in each term's jet (found once, not per element).
+        let positions: Vec<Vec<Option<usize>>> = self
+            .terms
+            .iter()
+            .map(|term| {
+                entries
+                    .iter()
+                    .map(|wanted| term.jet.iter().position(|j| j == wanted))
+                    .collect()
+            })
+            .collect();
         let per_element = self.map_elements(|e| {
             let local = self.gather(e, global);
             let mut jet = [0.0; MAX_JET];
             let mut residual = [0.0; MAX_JET];
             let mut sums = vec![0.0; entries.len()];
-            for (t, term) in self.terms.iter().enumerate() {
-                let positions: Vec<Option<usize>> = entries
-                    .iter()
-                    .map(|wanted| term.jet.iter().position(|j| j == wanted))
-                    .collect();
+            for (t, (term, positions)) in self.terms.iter().zip(&positions).enumerate() {
                 if positions.iter().all(Option::is_none) {
                     continue;
                 }
@@ -658,7 +665,7 @@ impl<M: EnergyModel> Assembler<M> {
                 for q in 0..values.weights.len() {
                     self.jet_at(term, values, q, &local, &mut jet[..m]);
                     self.model.residual(t, &jet[..m], &mut residual[..m]);
-                    for (sum, position) in sums.iter_mut().zip(&positions) {
+                    for (sum, position) in sums.iter_mut().zip(positions) {
                         if let Some(i) = position {
                             *sum += residual[*i] * values.weights[q] / area;
                         }
