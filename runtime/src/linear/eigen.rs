@@ -95,6 +95,13 @@ const NEGATIVE_NOISE_RELATIVE: f64 = 1e-9;
 const STAGNATION_WINDOW: usize = 3;
 /// Restarts without halving of the residual after which the iteration gives up.
 const HOPELESS_WINDOW: usize = 12;
+/// Basis vectors beyond the number of wanted modes at the first convergence check.
+const EARLY_CHECK_MARGIN: usize = 5;
+/// Vectors appended between two convergence checks before the basis is full.
+const EARLY_CHECK_STRIDE: usize = 2;
+/// Relative size (root mean square against that of the start vector) of the pseudo-random part
+/// added to a warm start.
+const WARM_START_RANDOM: f64 = 1e-3;
 /// Relative $`A`$-norm below which an orthogonalised vector signals an invariant subspace.
 const BREAKDOWN_RELATIVE: f64 = 1e-10;
 
@@ -151,6 +158,10 @@ struct Basis {
     b_vectors: Vec<Vec<f64>>,
     /// $`C v_j = A^{-1} B v_j`$.
     c_vectors: Vec<Vec<f64>>,
+    /// Lower triangle of the projected matrix
+    /// $`T_{ij} = \tfrac12 (v_i^\top A C v_j + v_j^\top A C v_i)`$, row by row, extended as
+    /// vectors are appended (so that a Rayleigh–Ritz check costs no product of length $`n`$).
+    projected: Vec<Vec<f64>>,
 }
 
 struct Operator<'a> {
@@ -164,7 +175,7 @@ impl Operator<'_> {
     /// Returns $`(B x, A^{-1} B x)`$.
     fn apply(&mut self, x: &[f64]) -> Result<(Vec<f64>, Vec<f64>), LinearError> {
         let mut bx = vec![0.0; x.len()];
-        self.b.try_multiply_into(x, &mut bx)?;
+        self.b.try_multiply_symmetric_into(x, &mut bx)?;
         let mut cx = bx.clone();
         self.a_factor.solve_in_place(&mut cx)?;
         self.applications += 1;
@@ -173,7 +184,7 @@ impl Operator<'_> {
 
     fn apply_a(&self, x: &[f64]) -> Result<Vec<f64>, LinearError> {
         let mut ax = vec![0.0; x.len()];
-        self.a.try_multiply_into(x, &mut ax)?;
+        self.a.try_multiply_symmetric_into(x, &mut ax)?;
         Ok(ax)
     }
 }
@@ -219,7 +230,47 @@ impl Basis {
         self.a_vectors.push(ax);
         self.b_vectors.push(bx);
         self.c_vectors.push(cx);
+        self.extend_projected();
         Ok(true)
+    }
+
+    /// Appends the row of the last vector to the projected matrix.
+    fn extend_projected(&mut self) {
+        let k = self.len() - 1;
+        let (a_k, c_k) = (&self.a_vectors[k], &self.c_vectors[k]);
+        let row = (0..=k)
+            .map(|j| 0.5 * (dot(a_k, &self.c_vectors[j]) + dot(&self.a_vectors[j], c_k)))
+            .collect();
+        self.projected.push(row);
+    }
+
+    /// A basis from the given vectors and their images, with its projected matrix.
+    fn from_columns(
+        vectors: Vec<Vec<f64>>,
+        a_vectors: Vec<Vec<f64>>,
+        b_vectors: Vec<Vec<f64>>,
+        c_vectors: Vec<Vec<f64>>,
+    ) -> Basis {
+        let mut basis = Basis {
+            vectors: Vec::with_capacity(vectors.len()),
+            a_vectors: Vec::with_capacity(vectors.len()),
+            b_vectors: Vec::with_capacity(vectors.len()),
+            c_vectors: Vec::with_capacity(vectors.len()),
+            projected: Vec::with_capacity(vectors.len()),
+        };
+        for (((v, av), bv), cv) in vectors
+            .into_iter()
+            .zip(a_vectors)
+            .zip(b_vectors)
+            .zip(c_vectors)
+        {
+            basis.vectors.push(v);
+            basis.a_vectors.push(av);
+            basis.b_vectors.push(bv);
+            basis.c_vectors.push(cv);
+            basis.extend_projected();
+        }
+        basis
     }
 
     /// Appends a new direction: the orthogonalised image of the last vector, or a random vector
@@ -264,8 +315,11 @@ struct RitzPair {
 fn rayleigh_ritz(basis: &Basis, n: usize, with_residual: usize) -> Vec<RitzPair> {
     let m = basis.len();
     let projected = DMatrix::from_fn(m, m, |i, j| {
-        0.5 * (dot(&basis.a_vectors[i], &basis.c_vectors[j])
-            + dot(&basis.a_vectors[j], &basis.c_vectors[i]))
+        if j <= i {
+            basis.projected[i][j]
+        } else {
+            basis.projected[j][i]
+        }
     });
     let eigen = SymmetricEigen::new(projected);
     let mut order: Vec<usize> = (0..m).collect();
@@ -400,16 +454,19 @@ pub fn smallest_positive_buckling(
         applications: 0,
     };
     let mut random = SplitMix64(options.seed);
-    let mut basis = Basis {
-        vectors: Vec::new(),
-        a_vectors: Vec::new(),
-        b_vectors: Vec::new(),
-        c_vectors: Vec::new(),
-    };
+    let mut basis = Basis::from_columns(Vec::new(), Vec::new(), Vec::new(), Vec::new());
     let warm = match &options.start {
         Some(start) if start.len() == n && start.iter().all(|v| v.is_finite()) => {
-            let reference = dot(start, &operator.apply_a(start)?).abs().sqrt();
-            basis.try_push(start.clone(), reference, &mut operator)?
+            // A small pseudo-random admixture: a warm start that is exactly orthogonal to the
+            // wanted mode (a symmetric mode of the neighbouring problem, an antisymmetric one
+            // here) would otherwise leave it outside the Krylov space for good.
+            let scale = WARM_START_RANDOM * norm(start) / (n as f64).sqrt();
+            let mut start = start.clone();
+            for value in start.iter_mut() {
+                *value += scale * random.next_unit();
+            }
+            let reference = dot(&start, &operator.apply_a(&start)?).abs().sqrt();
+            basis.try_push(start, reference, &mut operator)?
         }
         _ => false,
     };
@@ -440,11 +497,23 @@ pub fn smallest_positive_buckling(
     let mut history: Vec<f64> = Vec::new();
     let mut restarts = 0;
     loop {
-        while basis.len() < krylov_dimension {
+        // Expand to the next check: every other vector once the basis holds a few more vectors
+        // than modes wanted (a warm-started analysis often converges long before the basis is
+        // full), and at the full dimension.
+        let first_check = (options.modes + EARLY_CHECK_MARGIN).min(krylov_dimension);
+        let target = if basis.len() < first_check {
+            first_check
+        } else {
+            (basis.len() + EARLY_CHECK_STRIDE).min(krylov_dimension)
+        };
+        let mut grew = false;
+        while basis.len() < target {
             if !basis.expand(&mut operator, &mut random)? {
                 break;
             }
+            grew = true;
         }
+        let full = basis.len() >= krylov_dimension || !grew;
         let ritz = rayleigh_ritz(&basis, n, options.modes);
         let spectral_scale = ritz
             .iter()
@@ -467,6 +536,9 @@ pub fn smallest_positive_buckling(
                 .is_none_or(|pair| pair.relative_residual <= options.tolerance.sqrt())
                 || exhausted
                 || restarts >= options.max_restarts;
+            if !full && !exhausted {
+                continue;
+            }
             if settled {
                 return Err(LinearError::NoPositiveLoadFactor {
                     most_negative_ritz_value: leftmost.map_or(0.0, |pair| pair.value),
@@ -476,6 +548,22 @@ pub fn smallest_positive_buckling(
             let worst = wanted
                 .iter()
                 .fold(0.0_f64, |max, pair| max.max(pair.relative_residual));
+            let all_found = wanted.len() == options.modes;
+            if !full && !exhausted {
+                if all_found && worst <= options.tolerance {
+                    let mut modes = wanted
+                        .iter()
+                        .map(|pair| finish_mode(&basis, pair, &operator, n))
+                        .collect::<Result<Vec<_>, _>>()?;
+                    modes.sort_by(|x, y| x.load_factor.total_cmp(&y.load_factor));
+                    return Ok(BucklingSolution {
+                        modes,
+                        iterations: operator.applications,
+                        converged: true,
+                    });
+                }
+                continue;
+            }
             history.push(worst);
             // Rounding limits the attainable residual (about ε κ(A) for smooth modes of stiff
             // operators): a residual that no longer halves is accepted below √tolerance (the load
@@ -526,12 +614,12 @@ pub fn smallest_positive_buckling(
                 .map(|pair| combine(vectors, pair.coefficients.iter().copied(), n))
                 .collect()
         };
-        let restarted = Basis {
-            vectors: transform(&basis.vectors),
-            a_vectors: transform(&basis.a_vectors),
-            b_vectors: transform(&basis.b_vectors),
-            c_vectors: transform(&basis.c_vectors),
-        };
+        let restarted = Basis::from_columns(
+            transform(&basis.vectors),
+            transform(&basis.a_vectors),
+            transform(&basis.b_vectors),
+            transform(&basis.c_vectors),
+        );
         basis = restarted;
         let reference = dot(&last_c, &last_b).abs().sqrt();
         if !basis.try_push(continuation, reference, &mut operator)? {
@@ -552,8 +640,8 @@ fn finish_mode(
     let mut vector = combine(&basis.vectors, pair.coefficients.iter().copied(), n);
     let mut av = vec![0.0; n];
     let mut bv = vec![0.0; n];
-    a.try_multiply_into(&vector, &mut av)?;
-    b.try_multiply_into(&vector, &mut bv)?;
+    a.try_multiply_symmetric_into(&vector, &mut av)?;
+    b.try_multiply_symmetric_into(&vector, &mut bv)?;
     let a_norm_squared = dot(&vector, &av);
     let b_quotient = dot(&vector, &bv);
     // λ = −1/θ with θ the Rayleigh quotient of C = A⁻¹B in the B-form,

@@ -3,6 +3,7 @@
 use std::sync::Arc;
 
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
+use rayon::prelude::*;
 
 use super::error::LinearError;
 
@@ -193,6 +194,9 @@ impl SparsityPattern {
     }
 }
 
+/// Rows per parallel task of [`SparseMatrix::try_multiply_symmetric_into`].
+const SYMMETRIC_PRODUCT_CHUNK: usize = 1024;
+
 /// A matrix on a shared [`SparsityPattern`]: only the values are owned, the pattern sits behind an
 /// [`Arc`]. `values[k]` is the entry at row `pattern.row_idx()[k]` of the column whose range
 /// contains `k`.
@@ -281,6 +285,46 @@ impl SparseMatrix {
                 y[row] += value * x_column;
             }
         }
+        Ok(())
+    }
+
+    /// $`y = A x`$ for a matrix whose values are symmetric (a tangent, a geometric stiffness):
+    /// then row $`i`$ equals column $`i`$, and each $`y_i`$ is a gathered dot product, computed
+    /// in parallel over rows and independent of the thread count. Same errors as
+    /// [`SparseMatrix::try_multiply_into`]; the values are not checked for symmetry.
+    pub fn try_multiply_symmetric_into(&self, x: &[f64], y: &mut [f64]) -> Result<(), LinearError> {
+        let n = self.dimension();
+        for (what, length) in [("x", x.len()), ("y", y.len())] {
+            if length != n {
+                return Err(LinearError::DimensionMismatch {
+                    what: what.to_owned(),
+                    expected: n,
+                    found: length,
+                });
+            }
+        }
+        if self.values.len() != self.pattern.nnz() {
+            return Err(LinearError::DimensionMismatch {
+                what: "matrix values".to_owned(),
+                expected: self.pattern.nnz(),
+                found: self.values.len(),
+            });
+        }
+        let col_ptr = self.pattern.col_ptr();
+        let row_idx = self.pattern.row_idx();
+        y.par_chunks_mut(SYMMETRIC_PRODUCT_CHUNK)
+            .enumerate()
+            .for_each(|(chunk, rows)| {
+                let first = chunk * SYMMETRIC_PRODUCT_CHUNK;
+                for (offset, target) in rows.iter_mut().enumerate() {
+                    let range = col_ptr[first + offset]..col_ptr[first + offset + 1];
+                    *target = row_idx[range.clone()]
+                        .iter()
+                        .zip(&self.values[range])
+                        .map(|(&column, &value)| value * x[column])
+                        .sum();
+                }
+            });
         Ok(())
     }
 

@@ -145,6 +145,138 @@ pub fn minimize_scalar<E>(
     }
 }
 
+/// Downhill moves [`local_parabolic_minimum`] makes to bracket the minimum before giving up.
+const MAX_BRACKETING_MOVES: usize = 6;
+
+/// Minimises $`f`$ near `centre` by successive parabolic interpolation, for a minimum known to
+/// within a few `step` of `centre` (e.g. from a coarser discretisation): $`f`$ is evaluated at
+/// `centre` and `centre` $`\pm`$ `step`, the bracket is moved downhill (doubling the step) until
+/// its middle point is the lowest, then the vertex of the parabola through the bracket is
+/// evaluated and the bracket tightened around the best point, until the next vertex lies within
+/// `x_tolerance` of the best point evaluated (which is returned).
+///
+/// On a smooth minimum this takes four or five evaluations where Brent's method, which must
+/// shrink the bracket itself below the tolerance, takes eight or nine. Returns `Ok(None)` when
+/// the minimum could not be bracketed within [`MAX_BRACKETING_MOVES`] moves, when an
+/// evaluation is not finite (the caller then falls back to a global search), or when the
+/// inputs are not finite; `converged = false` when the budget `max_evaluations` ran out after
+/// bracketing. A failing evaluation aborts and returns its error.
+pub fn local_parabolic_minimum<E>(
+    mut f: impl FnMut(f64) -> Result<f64, E>,
+    centre: f64,
+    step: f64,
+    x_tolerance: f64,
+    max_evaluations: usize,
+) -> Result<Option<ScalarMinimum>, E> {
+    if !(centre.is_finite() && step.is_finite() && step > 0.0) || max_evaluations < 4 {
+        return Ok(None);
+    }
+    let mut evaluations = 0;
+    let mut evaluate = |x: f64, evaluations: &mut usize| -> Result<(f64, f64), E> {
+        *evaluations += 1;
+        let value = f(x)?;
+        Ok((x, if value.is_nan() { f64::INFINITY } else { value }))
+    };
+    let mut b = evaluate(centre, &mut evaluations)?;
+    let mut a = evaluate(centre - step, &mut evaluations)?;
+    let mut c = evaluate(centre + step, &mut evaluations)?;
+    let mut moves = 0;
+    loop {
+        if ![a.1, b.1, c.1].iter().all(|v| v.is_finite()) {
+            return Ok(None);
+        }
+        if b.1 <= a.1 && b.1 <= c.1 {
+            break;
+        }
+        if moves >= MAX_BRACKETING_MOVES || evaluations >= max_evaluations {
+            return Ok(None);
+        }
+        moves += 1;
+        if a.1 < c.1 {
+            let next = evaluate(a.0 - 2.0 * (b.0 - a.0), &mut evaluations)?;
+            c = b;
+            b = a;
+            a = next;
+        } else {
+            let next = evaluate(c.0 + 2.0 * (c.0 - b.0), &mut evaluations)?;
+            a = b;
+            b = c;
+            c = next;
+        }
+    }
+    Ok(Some(parabolic_refinement(
+        f,
+        [a, b, c],
+        evaluations,
+        x_tolerance,
+        max_evaluations,
+    )?))
+}
+
+/// Successive parabolic interpolation from a bracket `[a, b, c]` of `(x, f(x))` pairs with
+/// $`a_x < b_x < c_x`$ and $`f(b) \le f(a), f(c)`$, all finite (e.g. three points of a scan):
+/// the vertex of the parabola through the bracket is evaluated and the bracket tightened around
+/// the best point, until the next vertex lies within `x_tolerance` of the best point evaluated
+/// (`converged`) or `max_evaluations` (counting the `spent` ones) are used. Returns the best
+/// point; an evaluation that is not finite inside the bracket stops the refinement there
+/// (`converged = false`).
+pub fn parabolic_refinement<E>(
+    mut f: impl FnMut(f64) -> Result<f64, E>,
+    [mut a, mut b, mut c]: [(f64, f64); 3],
+    spent: usize,
+    x_tolerance: f64,
+    max_evaluations: usize,
+) -> Result<ScalarMinimum, E> {
+    let mut evaluations = spent;
+    let tolerance = x_tolerance.abs().max(2.0 * f64::EPSILON.sqrt() * b.0.abs());
+    loop {
+        // Vertex of the parabola through a, b, c (inside [a, c] since f(b) is the lowest).
+        let (p, q) = (
+            (b.0 - a.0).powi(2) * (b.1 - c.1) - (b.0 - c.0).powi(2) * (b.1 - a.1),
+            (b.0 - a.0) * (b.1 - c.1) - (b.0 - c.0) * (b.1 - a.1),
+        );
+        let vertex = if q != 0.0 { b.0 - 0.5 * p / q } else { b.0 };
+        let vertex = if vertex.is_finite() {
+            vertex.clamp(a.0, c.0)
+        } else {
+            b.0
+        };
+        let converged = (vertex - b.0).abs() <= tolerance;
+        if converged || evaluations >= max_evaluations {
+            return Ok(ScalarMinimum {
+                argument: b.0,
+                value: b.1,
+                evaluations,
+                converged,
+            });
+        }
+        evaluations += 1;
+        let value = f(vertex)?;
+        if !value.is_finite() {
+            // Rejected inside the bracket: no parabola through it; the best point stands.
+            return Ok(ScalarMinimum {
+                argument: b.0,
+                value: b.1,
+                evaluations,
+                converged: false,
+            });
+        }
+        let u = (vertex, value);
+        if u.1 <= b.1 {
+            if u.0 < b.0 {
+                c = b;
+            } else {
+                a = b;
+            }
+            b = u;
+        } else if u.0 < b.0 {
+            a = u;
+        } else {
+            c = u;
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -205,6 +337,42 @@ mod tests {
         );
         assert!(matches!(result, Err(message) if message.starts_with("model failed")));
         assert_eq!(calls, 4);
+    }
+
+    #[test]
+    fn local_parabolic_finds_a_smooth_minimum_in_few_evaluations() {
+        // λ(Q) = Q² + 1/Q² in x = ln Q: minimum at x = 0 (cosh shape), started 1.5 % off.
+        let f = |x: f64| Ok::<_, ()>((2.0 * x).exp() + (-2.0 * x).exp());
+        let result = local_parabolic_minimum(f, 0.015, 0.02, 1e-3, 20)
+            .unwrap()
+            .unwrap();
+        assert!(result.converged);
+        assert!(result.argument.abs() < 1e-3, "{result:?}");
+        assert!(result.evaluations <= 5, "{result:?}");
+        // A minimum 10 steps away is bracketed by doubling moves, then refined.
+        let g = |x: f64| Ok::<_, ()>((x - 0.3).powi(2) + 0.1 * (x - 0.3).powi(3));
+        let far = local_parabolic_minimum(g, 0.0, 0.03, 1e-6, 40)
+            .unwrap()
+            .unwrap();
+        assert!(far.converged);
+        assert!((far.argument - 0.3).abs() < 1e-5, "{far:?}");
+    }
+
+    #[test]
+    fn local_parabolic_gives_up_on_an_unbracketed_or_rejected_minimum() {
+        // Monotone: no minimum within six doubling moves.
+        assert!(
+            local_parabolic_minimum(|x: f64| Ok::<_, ()>(x), 0.0, 0.01, 1e-6, 50)
+                .unwrap()
+                .is_none()
+        );
+        // A rejected (infinite) evaluation sends the caller back to its global search.
+        let rejected = |x: f64| Ok::<_, ()>(if x < 0.0 { f64::INFINITY } else { x * x });
+        assert!(
+            local_parabolic_minimum(rejected, 0.0, 0.1, 1e-6, 50)
+                .unwrap()
+                .is_none()
+        );
     }
 
     #[test]

@@ -36,6 +36,7 @@
 use crate::fem::element::{ElementValues, GaussRule, QUAD8_NODES};
 use crate::model::{Derivative, EnergyModel, ModelSpec};
 use crate::problem::Problem;
+use rayon::prelude::*;
 
 /// Outcome of a Legendre–Hadamard check over the whole domain.
 #[derive(Clone, Debug, PartialEq)]
@@ -147,6 +148,15 @@ pub fn gradient_free_fields(spec: &ModelSpec) -> Vec<usize> {
 /// value stiffness $`k_f`$ with the sum of the terms' magnitudes.
 struct PointHessian {
     gradient_block: Vec<f64>,
+    value_stiffness: Vec<(f64, f64)>,
+}
+
+/// The checks at one quadrature point, before they are folded into the report.
+struct PointCheck {
+    weight: f64,
+    location: [f64; 2],
+    /// Worst direction of the gradient block: margin, angle and slot.
+    gradient: Option<(f64, f64, usize)>,
     value_stiffness: Vec<(f64, f64)>,
 }
 
@@ -292,61 +302,76 @@ pub fn legendre_hadamard<M: EnergyModel>(
     let mut total_area = 0.0;
     let mut violated_area = 0.0;
     let mut field_violated_area = vec![0.0; gradient_free.len()];
-    let mut hessians: Vec<Vec<f64>> = spec
+    let hessians: Vec<Vec<f64>> = spec
         .terms
         .iter()
         .map(|t| vec![0.0; t.tangent_pattern.len()])
         .collect();
-    for e in 0..mesh.elements.len() {
-        let Ok(values) = ElementValues::new(e, &mesh.element_coordinates(e), &rule, true) else {
-            continue;
-        };
-        let nodal: Vec<&[f64]> = mesh.elements[e]
-            .iter()
-            .map(|&node| &global[node * nf..(node + 1) * nf])
-            .collect();
-        for q in 0..values.weights.len() {
-            let weight = values.weights[q];
-            total_area += weight;
-            let point = point_hessian(
-                assembler.model(),
-                &nodal,
-                &values,
-                q,
-                &gradient_fields,
-                &gradient_free,
-                &mut hessians,
-            );
-            let mut point_violated = false;
-            if m > 0 {
-                let (margin, angle, at) = worst_direction(&point.gradient_block, m);
-                point_violated |= margin <= -MARGIN_TOLERANCE;
-                if margin < report.worst_margin {
-                    report.worst_margin = margin;
-                    report.location = values.points[q];
-                    report.direction = angle;
-                    report.field = spec.fields[gradient_fields[at]];
-                }
+    // The pointwise checks run in parallel over elements; they are folded below in element
+    // order, so the report does not depend on the thread count.
+    let checks: Vec<Vec<PointCheck>> = (0..mesh.elements.len())
+        .into_par_iter()
+        .map_with(hessians, |hessians, e| {
+            let Ok(values) = ElementValues::new(e, &mesh.element_coordinates(e), &rule, true)
+            else {
+                return Vec::new();
+            };
+            let nodal: Vec<&[f64]> = mesh.elements[e]
+                .iter()
+                .map(|&node| &global[node * nf..(node + 1) * nf])
+                .collect();
+            (0..values.weights.len())
+                .map(|q| {
+                    let point = point_hessian(
+                        assembler.model(),
+                        &nodal,
+                        &values,
+                        q,
+                        &gradient_fields,
+                        &gradient_free,
+                        hessians,
+                    );
+                    PointCheck {
+                        weight: values.weights[q],
+                        location: values.points[q],
+                        gradient: (m > 0).then(|| worst_direction(&point.gradient_block, m)),
+                        value_stiffness: point.value_stiffness,
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    for check in checks.iter().flatten() {
+        let weight = check.weight;
+        total_area += weight;
+        let mut point_violated = false;
+        if let Some((margin, angle, at)) = check.gradient {
+            point_violated |= margin <= -MARGIN_TOLERANCE;
+            if margin < report.worst_margin {
+                report.worst_margin = margin;
+                report.location = check.location;
+                report.direction = angle;
+                report.field = spec.fields[gradient_fields[at]];
             }
-            for (s, &(stiffness, magnitude)) in point.value_stiffness.iter().enumerate() {
-                let margin = if magnitude > 0.0 {
-                    stiffness / magnitude
-                } else {
-                    0.0
-                };
-                let field = &mut report.gradient_free[s];
-                if margin < field.worst_margin {
-                    field.worst_margin = margin;
-                    field.location = values.points[q];
-                }
-                if margin <= -MARGIN_TOLERANCE {
-                    field_violated_area[s] += weight;
-                    point_violated = true;
-                }
+        }
+        for (s, &(stiffness, magnitude)) in check.value_stiffness.iter().enumerate() {
+            let margin = if magnitude > 0.0 {
+                stiffness / magnitude
+            } else {
+                0.0
+            };
+            let field = &mut report.gradient_free[s];
+            if margin < field.worst_margin {
+                field.worst_margin = margin;
+                field.location = check.location;
             }
-            if point_violated {
-                violated_area += weight;
+            if margin <= -MARGIN_TOLERANCE {
+                field_violated_area[s] += weight;
+                point_violated = true;
             }
+        }
+        if point_violated {
+            violated_area += weight;
         }
     }
     if total_area > 0.0 {

@@ -8,8 +8,15 @@
 //! **warm-started** from its neighbour — the pre-buckling state as Newton's initial guess, the
 //! mode as the Lanczos start vector — so a scan costs a small multiple of one analysis.
 //!
-//! **Shifted analyses.** In the refinement (and in a scan given a load guess), each analysis
-//! linearises about
+//! **Scan from short to long wavelengths.** The scan starts at the largest $`Q`$ (cheap
+//! analyses: the modes are short and the eigen-solver converges in a few iterations) and ends
+//! two points past the lowest value: $`\lambda_c(Q)`$ of the envelope models has a single
+//! minimum (eq. (42) is a ratio of a quadratic and a linear function of $`Q^2`$), and the
+//! long-wavelength end, where the analyses are expensive (on the strip of example 2 the
+//! compressed zone is small and Lanczos needs hundreds of iterations) or rejected, is only
+//! reached when $`\lambda_c`$ keeps falling there.
+//!
+//! **Shifted analyses.** Each analysis after the first linearises about
 //! $`\sigma = `$ [`WavenumberSearchOptions::shift_fraction`] times the last accepted critical
 //! load instead of 0: shift-invert about $`\sigma`$ makes the wanted load factor the dominant
 //! end of the spectrum (on the strip of example 2 the unshifted Lanczos needs hundreds of
@@ -17,8 +24,9 @@
 //! negative pivot in its factorisation): the pre-buckling tangent is affine in $`\lambda`$ and
 //! positive definite at 0, so by Sylvester's law of inertia no critical load lies in
 //! $`(0, \sigma]`$ and the smallest positive load factor about $`\sigma`$ is still the first
-//! critical load. Otherwise the evaluation is redone about the caller's reference load. The
-//! first evaluation is shifted too when the caller has a guess
+//! critical load. Otherwise the evaluation is redone about the caller's reference load (in the
+//! wide scan, where $`\lambda_c`$ can fall by more than the margin between neighbours, after a
+//! second try at 0.3 times the last load). The first evaluation is shifted too when the caller has a guess
 //! ([`WavenumberSearchOptions::load_guess`], e.g. the threshold on a coarser mesh).
 //!
 //! **Accuracy the load can carry.** $`\lambda_c(Q)`$ is flat to second order at its minimum: a
@@ -32,7 +40,7 @@
 //! (Legendre–Hadamard check of the generated tangent over more than
 //! [`WavenumberSearchOptions::max_violated_fraction`] of the area) and recorded with the reason.
 
-use super::brent::minimize_scalar;
+use super::brent::{local_parabolic_minimum, minimize_scalar, parabolic_refinement};
 use super::buckling::{LinearBuckling, LinearBucklingOptions, linear_buckling};
 use super::ellipticity::{EllipticityReport, legendre_hadamard};
 use super::error::SolveError;
@@ -63,6 +71,24 @@ pub struct WavenumberSearchOptions {
     /// A guess of the critical load (e.g. from a coarser mesh) that lets the first evaluation
     /// be shifted too.
     pub load_guess: Option<f64>,
+    /// Eigen-solver tolerance (relative Ritz residual) of the scan's analyses, which only rank
+    /// wavenumbers: the load factor's error is about the square of the residual over the
+    /// relative gap, so $`10^{-5}`$ gives $`\lambda_c`$ to about $`10^{-9}`$.
+    pub scan_eigen_tolerance: f64,
+    /// A guess of the minimiser (e.g. from a coarser mesh): the search is then local,
+    /// successive parabolic interpolation in $`\ln Q`$ from the guess and its neighbours at
+    /// the relative distance [`LocalGuess::relative_step`], and falls back to the scan over
+    /// `range` only when the minimum is not bracketed near the guess.
+    pub local_guess: Option<LocalGuess>,
+}
+
+/// Where a local search starts (see [`WavenumberSearchOptions::local_guess`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LocalGuess {
+    /// The guessed minimiser.
+    pub parameter: f64,
+    /// Relative distance of the first neighbours (a few times the guess's uncertainty).
+    pub relative_step: f64,
 }
 
 impl Default for WavenumberSearchOptions {
@@ -79,6 +105,8 @@ impl Default for WavenumberSearchOptions {
             buckling,
             shift_fraction: 0.8,
             load_guess: None,
+            scan_eigen_tolerance: 1e-5,
+            local_guess: None,
         }
     }
 }
@@ -111,6 +139,15 @@ pub struct WavenumberSearch {
     pub reference_load: f64,
     /// Every evaluation, in order.
     pub evaluations: Vec<WavenumberEvaluation>,
+}
+
+/// The warm start kept from an analysis: its pre-buckling state, load rate and reference load.
+fn warm_state(buckling: &LinearBuckling, reference_load: f64) -> (Vec<f64>, Vec<f64>, f64) {
+    (
+        buckling.prebuckling.clone(),
+        buckling.prebuckling_rate.clone(),
+        reference_load,
+    )
 }
 
 /// The state at the first critical load: the pre-buckling state extrapolated linearly from the
@@ -157,7 +194,10 @@ struct Searcher<'a, M: EnergyModel> {
     options: &'a WavenumberSearchOptions,
     observer: &'a mut dyn FnMut(&WavenumberEvaluation),
     evaluations: Vec<WavenumberEvaluation>,
-    warm_state: Option<Vec<f64>>,
+    /// The last pre-buckling state, its load rate and its load: the next analysis starts
+    /// Newton from the state extrapolated to its own reference load (exact on a linear
+    /// fundamental path, so that Newton needs no iteration).
+    warm_state: Option<(Vec<f64>, Vec<f64>, f64)>,
     warm_mode: Option<Vec<f64>>,
     /// The last accepted critical load (the next evaluation's shift is a fraction of it).
     last_load: Option<f64>,
@@ -179,7 +219,7 @@ impl<M: EnergyModel> Searcher<'_, M> {
             Ok((buckling, ellipticity, reference)) => {
                 record.eigen_iterations = buckling.eigen_iterations;
                 let load = buckling.critical_loads[0];
-                self.warm_state = Some(buckling.prebuckling.clone());
+                self.warm_state = Some(warm_state(&buckling, reference));
                 self.warm_mode = buckling.modes.first().cloned();
                 if ellipticity.violated_fraction > self.options.max_violated_fraction {
                     record.rejected = Some(format!(
@@ -221,19 +261,45 @@ impl<M: EnergyModel> Searcher<'_, M> {
     ) -> Result<(LinearBuckling, EllipticityReport, f64), SolveError> {
         set_model_parameter(self.problem, self.options.parameter, parameter)?;
         let mut options = self.options.buckling.clone();
-        options.initial_state = self.warm_state.clone();
+        let warm = self.warm_state.as_ref();
+        let start_at = |load: f64| {
+            warm.map(|(state, rate, from)| {
+                state
+                    .iter()
+                    .zip(rate)
+                    .map(|(u, r)| u + (load - from) * r)
+                    .collect::<Vec<f64>>()
+            })
+        };
+        options.initial_state = start_at(options.reference_load);
         options.eigen.start = self.warm_mode.clone();
-        // Not during a wide scan (neighbours decades apart, where λ_c varies too much for the
-        // shift to stay below it), unless the caller's guess says where λ_c is.
+        if self.scanning {
+            options.eigen.tolerance = options
+                .eigen
+                .tolerance
+                .max(self.options.scan_eigen_tolerance);
+        }
+        // During a wide scan, neighbours are far apart and λ_c may fall by more than the
+        // shift's margin: a second, smaller shift is tried before the analysis about the
+        // reference load (each failed try costs one factorisation; a successful one saves most
+        // of the eigen-solver's iterations).
         let wide_scan = self.scanning && self.options.load_guess.is_none();
-        let shift = self
-            .last_load
-            .filter(|_| !wide_scan)
-            .map(|load| self.options.shift_fraction * load)
-            .filter(|&s| s.is_finite() && s > options.reference_load);
-        if let Some(shift) = shift {
+        let fractions: &[f64] = if wide_scan {
+            &[self.options.shift_fraction, SCAN_SECOND_SHIFT]
+        } else {
+            &[self.options.shift_fraction]
+        };
+        for &fraction in fractions {
+            let Some(shift) = self
+                .last_load
+                .map(|load| fraction * load)
+                .filter(|&s| s.is_finite() && s > options.reference_load)
+            else {
+                break;
+            };
             let shifted = LinearBucklingOptions {
                 reference_load: shift,
+                initial_state: start_at(shift),
                 ..options.clone()
             };
             if let Ok(buckling) = linear_buckling(self.problem, self.factor, &shifted)
@@ -285,7 +351,37 @@ pub fn minimise_critical_load<M: EnergyModel>(
         best: None,
         scanning: true,
     };
-    let values: Vec<f64> = scan.iter().map(|&q| searcher.evaluate(q)).collect();
+    if let Some(guess) = options.local_guess
+        && guess.parameter > 0.0
+        && guess.relative_step > 0.0
+    {
+        searcher.scanning = false;
+        let local = local_parabolic_minimum(
+            |x| Ok::<f64, SolveError>(searcher.evaluate(x.exp())),
+            guess.parameter.ln(),
+            guess.relative_step.ln_1p(),
+            options.relative_tolerance.ln_1p(),
+            LOCAL_EVALUATIONS,
+        )?;
+        if local.is_some() {
+            return finish_search(searcher);
+        }
+        // Not bracketed near the guess (or an evaluation rejected): the global search.
+        searcher.scanning = true;
+    }
+    // From short to long wavelengths, ending two points past the lowest value (module
+    // documentation): unevaluated points keep +∞.
+    let mut values = vec![f64::INFINITY; points];
+    let mut lowest: Option<usize> = None;
+    for k in (0..points).rev() {
+        values[k] = searcher.evaluate(scan[k]);
+        if values[k].is_finite() && lowest.is_none_or(|b| values[k] < values[b]) {
+            lowest = Some(k);
+        }
+        if lowest.is_some_and(|b| b >= k + SCAN_PAST_MINIMUM) {
+            break;
+        }
+    }
     let best = (0..points)
         .min_by(|&a, &b| values[a].total_cmp(&values[b]))
         .expect("the scan is not empty");
@@ -296,8 +392,8 @@ pub fn minimise_critical_load<M: EnergyModel>(
         )));
     }
     // Refine in the bracket around the best scan point, warm-started from it.
-    if let Some((_, buckling, _, _)) = &searcher.best {
-        searcher.warm_state = Some(buckling.prebuckling.clone());
+    if let Some((_, buckling, _, reference)) = &searcher.best {
+        searcher.warm_state = Some(warm_state(buckling, *reference));
         searcher.warm_mode = buckling.modes.first().cloned();
         searcher.last_load = buckling.critical_loads.first().copied();
     }
@@ -312,17 +408,48 @@ pub fn minimise_critical_load<M: EnergyModel>(
     } else {
         scan[best + 1]
     };
-    minimize_scalar(
-        |q| Ok::<f64, SolveError>(searcher.evaluate(q)),
-        bracket_low,
-        bracket_high,
-        options.relative_tolerance * scan[best],
-        100,
-    )?;
+    // Successive parabolic interpolation in ln Q from the scan's bracket when both neighbours
+    // of the best point were accepted; Brent's method over the bracket otherwise.
+    let interior = best > 0 && best + 1 < points;
+    if interior && values[best - 1].is_finite() && values[best + 1].is_finite() {
+        let triple = [best - 1, best, best + 1].map(|k| (scan[k].ln(), values[k]));
+        parabolic_refinement(
+            |x| Ok::<f64, SolveError>(searcher.evaluate(x.exp())),
+            triple,
+            0,
+            options.relative_tolerance.ln_1p(),
+            LOCAL_EVALUATIONS,
+        )?;
+    } else {
+        minimize_scalar(
+            |q| Ok::<f64, SolveError>(searcher.evaluate(q)),
+            bracket_low,
+            bracket_high,
+            options.relative_tolerance * scan[best],
+            100,
+        )?;
+    }
+    finish_search(searcher)
+}
+
+/// The second shift tried in a wide scan, as a fraction of the last accepted critical load.
+const SCAN_SECOND_SHIFT: f64 = 0.3;
+
+/// Scan points evaluated past the lowest value before the scan ends.
+const SCAN_PAST_MINIMUM: usize = 2;
+
+/// Evaluations of a local search (bracketing moves included) before it stops at its best point.
+const LOCAL_EVALUATIONS: usize = 16;
+
+/// The search's best analysis, with the model set to its parameter.
+fn finish_search<M: EnergyModel>(
+    mut searcher: Searcher<'_, M>,
+) -> Result<WavenumberSearch, SolveError> {
     let (parameter, buckling, ellipticity, reference_load) =
         searcher.best.take().expect("an accepted evaluation exists");
     let evaluations = searcher.evaluations;
-    set_model_parameter(problem, options.parameter, parameter)?;
+    let options = searcher.options;
+    set_model_parameter(searcher.problem, options.parameter, parameter)?;
     Ok(WavenumberSearch {
         parameter,
         buckling,
