@@ -403,6 +403,7 @@ fn trace_path<M: EnergyModel>(
             start,
             max_load,
             threshold.critical_load(),
+            threshold.buckling.modes.first().cloned(),
             &mut observer,
             &mut anm_steps,
         )
@@ -457,6 +458,7 @@ fn follow<M: EnergyModel>(
     start: PathState,
     max_load: Option<f64>,
     critical_load: f64,
+    buckling_mode: Option<Vec<f64>>,
     observer: &mut dyn FnMut(&PathEvent) -> PathControl,
     anm_steps: &mut Vec<AnmStep>,
 ) -> PathResult {
@@ -473,6 +475,8 @@ fn follow<M: EnergyModel>(
                     tolerance: scene.solver.tolerance * 1e-3,
                     max_iterations: 12,
                 },
+                // The threshold's mode starts the eigen-solver of the bifurcation prediction.
+                bifurcation_mode_guess: buckling_mode,
                 ..AnmOptions::default()
             };
             follow_path_anm(problem, start, factor, &options, observer, anm_steps)

@@ -7,8 +7,10 @@
 //! [`MIN_WAVELENGTH_OVER_THICKNESS`]$`\,h`$ and the shorter side of the domain — then refines
 //! the best bracket (`wrinkle_runtime::solve::wavenumber`). **Two levels**: the global scan and
 //! a refinement to 1 % in $`Q`$ run on a mesh with half the elements each way; the real mesh then
-//! only refines within ±10 % of that minimiser (3 scan points and Brent), to $`10^{-3}`$ in $`Q`$
-//! — $`\lambda_c`$ is flat to second order there, so that is about $`10^{-6}`$ in $`\lambda_c`$. A model whose $`\lambda_c(Q)`$ keeps
+//! only refines around that minimiser (successive parabolic interpolation from it and its
+//! neighbours at ±2 %, falling back to 3 scan points within ±10 % and Brent when the minimum is
+//! not bracketed there), to $`2\cdot10^{-4}`$ in $`Q`$ — $`\lambda_c`$ is flat to second order
+//! there, so that is about $`10^{-7}`$ in $`\lambda_c`$. A model whose $`\lambda_c(Q)`$ keeps
 //! falling to the end of the range has no wavelength selection of its own: its $`Q`$ is then
 //! taken from the reference envelope's minimisation on the same scene, and a note says so. A
 //! model whose envelope has no gradient at all (the pure membrane, threshold $`DQ^2`$) is known

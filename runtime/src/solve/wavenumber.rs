@@ -3,8 +3,11 @@
 //!
 //! **Global, then local.** $`\lambda_c(Q)`$ is first sampled on a logarithmic scan over the whole
 //! range where the caller says the model is valid (a local bracket around a guess can miss the
-//! minimum by orders of magnitude when the tension is tiny or huge), then refined by Brent's
-//! method in the best bracket. Each evaluation is a linear buckling analysis; it is
+//! minimum by orders of magnitude when the tension is tiny or huge), then refined by successive
+//! parabolic interpolation in $`\ln Q`$ from the best scan point and its neighbours (Brent's
+//! method in the best bracket when a neighbour was rejected or the best point is an end of the
+//! range). With a guess of the minimiser ([`WavenumberSearchOptions::local_guess`]) the scan is
+//! skipped unless the minimum is not bracketed near the guess. Each evaluation is a linear buckling analysis; it is
 //! **warm-started** from its neighbour — the pre-buckling state as Newton's initial guess, the
 //! mode as the Lanczos start vector — so a scan costs a small multiple of one analysis.
 //!
