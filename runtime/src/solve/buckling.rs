@@ -77,6 +77,12 @@ pub fn linear_buckling<M: EnergyModel>(
     factor.factorize(&a).map_err(SolveError::linear(
         "linear buckling: factorisation of the pre-buckling tangent",
     ))?;
+    // The eigen-solver needs A positive definite: say so before assembling what it would use.
+    if let Some(negative) = factor.negative_pivots().filter(|&count| count > 0) {
+        return Err(SolveError::Buckling(format!(
+            "linear buckling: the tangent at the reference load {load:e} has {negative} negative pivots: the reference state is already beyond a critical point"
+        )));
+    }
     let mut rate = problem.load_derivative(&pre.solution, load);
     for r in rate.iter_mut() {
         *r = -*r;

@@ -204,6 +204,8 @@ struct Searcher<'a, M: EnergyModel> {
     warm_mode: Option<Vec<f64>>,
     /// The last accepted critical load (the next evaluation's shift is a fraction of it).
     last_load: Option<f64>,
+    /// The last two accepted `(parameter, critical load)` of the scan, oldest first.
+    scan_trend: Vec<(f64, f64)>,
     best: Option<(f64, LinearBuckling, EllipticityReport, f64)>,
     scanning: bool,
 }
@@ -236,6 +238,12 @@ impl<M: EnergyModel> Searcher<'_, M> {
                 } else {
                     record.critical_load = Some(load);
                     self.last_load = Some(load);
+                    if self.scanning {
+                        self.scan_trend.push((parameter, load));
+                        if self.scan_trend.len() > 2 {
+                            self.scan_trend.remove(0);
+                        }
+                    }
                     if self
                         .best
                         .as_ref()
@@ -254,6 +262,24 @@ impl<M: EnergyModel> Searcher<'_, M> {
         (self.observer)(&record);
         self.evaluations.push(record);
         value
+    }
+
+    /// The critical load expected at `parameter`, which the shift is a fraction of: the last
+    /// accepted one, or during the scan its power-law extrapolation from the last two accepted
+    /// scan points when that is lower (λ_c falling towards the minimum).
+    fn expected_load(&self, parameter: f64) -> Option<f64> {
+        let last = self.last_load?;
+        if !self.scanning {
+            return Some(last);
+        }
+        let trend = match self.scan_trend.as_slice() {
+            [(q0, l0), (q1, l1)] if *q0 != *q1 && *l0 > 0.0 && *l1 > 0.0 => {
+                let exponent = (l1 / l0).ln() / (q1 / q0).ln();
+                l1 * (parameter / q1).powf(exponent)
+            }
+            _ => last,
+        };
+        Some(if trend.is_finite() { last.min(trend) } else { last })
     }
 
     /// The analysis at `parameter`, about a shift when one is safe (module documentation),
@@ -294,7 +320,7 @@ impl<M: EnergyModel> Searcher<'_, M> {
         };
         for &fraction in fractions {
             let Some(shift) = self
-                .last_load
+                .expected_load(parameter)
                 .map(|load| fraction * load)
                 .filter(|&s| s.is_finite() && s > options.reference_load)
             else {
@@ -351,6 +377,7 @@ pub fn minimise_critical_load<M: EnergyModel>(
         warm_state: None,
         warm_mode: None,
         last_load: options.load_guess,
+        scan_trend: Vec::new(),
         best: None,
         scanning: true,
     };
