@@ -385,3 +385,72 @@ fn stiff_fourth_order_operator_keeps_accuracy() {
     // Rounding in A φ for such smooth modes limits the accuracy to about ε κ(A)^{1/2}.
     assert_load_factors(&computed, &expected, 1e-9);
 }
+
+/// The half-sine modes $`\sin(k\pi (i+1)/(n+1))`$ of the 1-D second difference.
+fn sine_mode(k: usize, n: usize) -> Vec<f64> {
+    (0..n)
+        .map(|i| (k as f64 * (i + 1) as f64 * PI / (n as f64 + 1.0)).sin())
+        .collect()
+}
+
+#[test]
+fn warm_start_near_the_mode_converges_before_the_basis_is_full() {
+    // The eigen-solver checks convergence as its basis grows: started near the first mode it
+    // stops long before filling the 40-vector basis, at the closed-form load factor.
+    let n = 400;
+    let a = grid_laplacian(n, 1);
+    let b = negative_diagonal(&a, |_| 1.0);
+    let factor = factorize(&a);
+    let (first, second) = (sine_mode(1, n), sine_mode(2, n));
+    let start: Vec<f64> = first
+        .iter()
+        .zip(&second)
+        .map(|(x, y)| x + 1e-2 * y)
+        .collect();
+    let options = BucklingOptions {
+        start: Some(start),
+        ..Default::default()
+    };
+    let solution = smallest_positive_buckling(&a, &factor, &b, &options).unwrap();
+    assert!(solution.converged);
+    assert!(
+        solution.iterations < options.max_krylov,
+        "{} operator applications",
+        solution.iterations
+    );
+    assert_load_factors(
+        &[solution.modes[0].load_factor],
+        &[second_difference_eigenvalue(1, n)],
+        1e-11,
+    );
+}
+
+#[test]
+fn warm_start_orthogonal_to_the_first_mode_still_finds_it() {
+    // A neighbour's mode can be exactly orthogonal to the wanted one (a symmetric mode there,
+    // an antisymmetric one here): a Krylov space built on it alone never contains the first
+    // mode. Here A = I and B = −diag(d) with the largest d first, so A⁻¹B is diagonal and keeps
+    // a zero first component exactly zero, rounding included: only the solver's pseudo-random
+    // admixture to every start vector can find λ₁ = 1/d₀ (without it the answer is 1/d₁).
+    let n = 400;
+    let pattern = grid_laplacian(n, 1);
+    let a = negative_diagonal(&pattern, |_| -1.0);
+    let d = |k: usize| {
+        if k == 0 {
+            4.0
+        } else {
+            2.0 - k as f64 / n as f64
+        }
+    };
+    let b = negative_diagonal(&pattern, d);
+    let factor = factorize(&a);
+    let mut start = vec![1.0; n];
+    start[0] = 0.0;
+    let options = BucklingOptions {
+        start: Some(start),
+        ..Default::default()
+    };
+    let solution = smallest_positive_buckling(&a, &factor, &b, &options).unwrap();
+    assert!(solution.converged);
+    assert_load_factors(&[solution.modes[0].load_factor], &[1.0 / d(0)], 1e-11);
+}
