@@ -121,7 +121,7 @@ fn add_imperfection<M: EnergyModel>(
     }
     let epsilon = scene.solver.perturbation * scene.material.thickness / amplitude;
     let mut matrix = problem.new_matrix();
-    let unloaded = crate::threshold::state_at(&threshold.buckling, threshold.reference_load, 0.0);
+    let unloaded = threshold.buckling.state_at(threshold.reference_load, 0.0);
     problem.tangent_into(&unloaded, 0.0, &mut matrix);
     let mut force = vec![0.0; mode.len()];
     matrix.multiply_into(mode, &mut force);
@@ -308,7 +308,7 @@ fn start_point<M: EnergyModel>(
     let mut matrix = problem.new_matrix();
     let solution = newton(
         problem,
-        crate::threshold::state_at(&threshold.buckling, threshold.reference_load, 0.0),
+        threshold.buckling.state_at(threshold.reference_load, 0.0),
         0.0,
         factor,
         &mut matrix,

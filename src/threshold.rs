@@ -597,16 +597,6 @@ fn robust_buckling<M: EnergyModel>(
     Ok((buckling, shift))
 }
 
-/// The pre-buckling state at `load` (linear extrapolation from the analysis about `reference`).
-pub fn state_at(buckling: &LinearBuckling, reference: f64, load: f64) -> Vec<f64> {
-    buckling
-        .prebuckling
-        .iter()
-        .zip(&buckling.prebuckling_rate)
-        .map(|(u, r)| u + (load - reference) * r)
-        .collect()
-}
-
 /// Symbolic analysis of the tangent's pattern.
 pub fn analyse<M: EnergyModel>(problem: &Problem<M>) -> Result<SparseFactorization, Error> {
     SparseFactorization::analyze(problem.assembler.pattern())
@@ -657,7 +647,7 @@ fn well_posedness_beyond<M: EnergyModel>(
     reference_load: f64,
 ) -> Option<ValidityWarning> {
     let load = WELL_POSEDNESS_LOAD_RATIO * buckling.critical_loads[0];
-    let state = state_at(buckling, reference_load, load);
+    let state = buckling.state_at(reference_load, load);
     let report = wrinkle_runtime::solve::ellipticity::legendre_hadamard(problem, &state, load);
     let worst = report
         .gradient_free

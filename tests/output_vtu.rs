@@ -32,12 +32,15 @@ fn read_piece(file: &Path) -> vtkio::model::UnstructuredGridPiece {
 }
 
 fn point_array(piece: &vtkio::model::UnstructuredGridPiece, name: &str) -> Vec<f64> {
-    let attribute = piece
-        .data
-        .point
+    data_array(&piece.data.point, "point", name)
+}
+
+/// The values of the data array `name` among `attributes` (point or cell data, `kind`).
+fn data_array(attributes: &[Attribute], kind: &str, name: &str) -> Vec<f64> {
+    let attribute = attributes
         .iter()
         .find(|a| a.name() == name)
-        .unwrap_or_else(|| panic!("no point array `{name}`"));
+        .unwrap_or_else(|| panic!("no {kind} array `{name}`"));
     let Attribute::DataArray(array) = attribute else {
         panic!("`{name}` is not a data array");
     };
@@ -293,16 +296,7 @@ fn surface_vtu_rejects_bad_grids_and_non_finite_values() {
 }
 
 fn cell_array(piece: &vtkio::model::UnstructuredGridPiece, name: &str) -> Vec<f64> {
-    let attribute = piece
-        .data
-        .cell
-        .iter()
-        .find(|a| a.name() == name)
-        .unwrap_or_else(|| panic!("no cell array `{name}`"));
-    let Attribute::DataArray(array) = attribute else {
-        panic!("`{name}` is not a data array");
-    };
-    array.data.clone().cast_into::<f64>().unwrap()
+    data_array(&piece.data.cell, "cell", name)
 }
 
 /// The stress resultants `wrinkle run` stores per element (N_X = ∂ψ/∂u_X, N_Y = ∂ψ/∂v_Y,

@@ -622,6 +622,13 @@ fn full_cases() -> Vec<Case> {
 // ---------------------------------------------------------------------------------------------
 // Reports.
 
+/// λ_c/λ_42 − 1, or empty where eq. (42) does not apply.
+fn excess_over_eq42(row: &Row) -> String {
+    row.ratio_to_eq42
+        .map(|r| format!("{:.2e}", r - 1.0))
+        .unwrap_or_default()
+}
+
 /// One line per case on stderr: name, outcome, λ_c, its excess over eq. (42), time, warnings,
 /// problems.
 fn progress_line(row: &Row) -> String {
@@ -630,9 +637,7 @@ fn progress_line(row: &Row) -> String {
         row.case,
         row.outcome,
         number(row.critical_load),
-        row.ratio_to_eq42
-            .map(|r| format!("{:.2e}", r - 1.0))
-            .unwrap_or_default(),
+        excess_over_eq42(row),
         row.seconds,
         row.warnings.join(","),
         row.problems.join("; ")
@@ -687,9 +692,7 @@ fn write_reports(name: &str, rows: &[Row]) -> PathBuf {
             row.case,
             row.outcome,
             number(row.critical_load),
-            row.ratio_to_eq42
-                .map(|r| format!("{:.2e}", r - 1.0))
-                .unwrap_or_default(),
+            excess_over_eq42(row),
             row.wavelength
                 .map(|l| format!("{l:.4}"))
                 .unwrap_or_default(),

@@ -551,16 +551,7 @@ pub fn smallest_positive_buckling(
             let all_found = wanted.len() == options.modes;
             if !full && !exhausted {
                 if all_found && worst <= options.tolerance {
-                    let mut modes = wanted
-                        .iter()
-                        .map(|pair| finish_mode(&basis, pair, &operator, n))
-                        .collect::<Result<Vec<_>, _>>()?;
-                    modes.sort_by(|x, y| x.load_factor.total_cmp(&y.load_factor));
-                    return Ok(BucklingSolution {
-                        modes,
-                        iterations: operator.applications,
-                        converged: true,
-                    });
+                    return solution(&basis, &wanted, &operator, n, true);
                 }
                 continue;
             }
@@ -585,17 +576,7 @@ pub fn smallest_positive_buckling(
                         tolerance: options.tolerance,
                     });
                 }
-                let modes = wanted
-                    .iter()
-                    .map(|pair| finish_mode(&basis, pair, &operator, n))
-                    .collect::<Result<Vec<_>, _>>()?;
-                let mut modes = modes;
-                modes.sort_by(|x, y| x.load_factor.total_cmp(&y.load_factor));
-                return Ok(BucklingSolution {
-                    modes,
-                    iterations: operator.applications,
-                    converged,
-                });
+                return solution(&basis, &wanted, &operator, n, converged);
             }
         }
         // Thick restart: keep the most negative Ritz vectors and the common residual direction.
@@ -626,6 +607,26 @@ pub fn smallest_positive_buckling(
             basis.expand(&mut operator, &mut random)?;
         }
     }
+}
+
+/// The returned solution: the modes of the `wanted` Ritz pairs, by ascending load factor.
+fn solution(
+    basis: &Basis,
+    wanted: &[&RitzPair],
+    operator: &Operator<'_>,
+    n: usize,
+    converged: bool,
+) -> Result<BucklingSolution, LinearError> {
+    let mut modes = wanted
+        .iter()
+        .map(|pair| finish_mode(basis, pair, operator, n))
+        .collect::<Result<Vec<_>, _>>()?;
+    modes.sort_by(|x, y| x.load_factor.total_cmp(&y.load_factor));
+    Ok(BucklingSolution {
+        modes,
+        iterations: operator.applications,
+        converged,
+    })
 }
 
 /// Builds the returned mode from a converged Ritz pair: explicit $`A`$-normalisation, Rayleigh

@@ -254,8 +254,8 @@ impl SparseMatrix {
         }
     }
 
-    /// $`y = A x`$, returning [`LinearError::DimensionMismatch`] on wrong lengths.
-    pub fn try_multiply_into(&self, x: &[f64], y: &mut [f64]) -> Result<(), LinearError> {
+    /// [`LinearError::DimensionMismatch`] when `x`, `y` or the values do not fit the pattern.
+    fn check_product(&self, x: &[f64], y: &[f64]) -> Result<(), LinearError> {
         let n = self.dimension();
         for (what, length) in [("x", x.len()), ("y", y.len())] {
             if length != n {
@@ -273,6 +273,12 @@ impl SparseMatrix {
                 found: self.values.len(),
             });
         }
+        Ok(())
+    }
+
+    /// $`y = A x`$, returning [`LinearError::DimensionMismatch`] on wrong lengths.
+    pub fn try_multiply_into(&self, x: &[f64], y: &mut [f64]) -> Result<(), LinearError> {
+        self.check_product(x, y)?;
         y.fill(0.0);
         let col_ptr = self.pattern.col_ptr();
         let row_idx = self.pattern.row_idx();
@@ -293,23 +299,7 @@ impl SparseMatrix {
     /// in parallel over rows and independent of the thread count. Same errors as
     /// [`SparseMatrix::try_multiply_into`]; the values are not checked for symmetry.
     pub fn try_multiply_symmetric_into(&self, x: &[f64], y: &mut [f64]) -> Result<(), LinearError> {
-        let n = self.dimension();
-        for (what, length) in [("x", x.len()), ("y", y.len())] {
-            if length != n {
-                return Err(LinearError::DimensionMismatch {
-                    what: what.to_owned(),
-                    expected: n,
-                    found: length,
-                });
-            }
-        }
-        if self.values.len() != self.pattern.nnz() {
-            return Err(LinearError::DimensionMismatch {
-                what: "matrix values".to_owned(),
-                expected: self.pattern.nnz(),
-                found: self.values.len(),
-            });
-        }
+        self.check_product(x, y)?;
         let col_ptr = self.pattern.col_ptr();
         let row_idx = self.pattern.row_idx();
         y.par_chunks_mut(SYMMETRIC_PRODUCT_CHUNK)

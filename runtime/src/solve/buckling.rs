@@ -47,6 +47,19 @@ pub struct LinearBucklingOptions {
     pub initial_state: Option<Vec<f64>>,
 }
 
+impl LinearBuckling {
+    /// The pre-buckling state at `load`, $`U_0 + (\lambda - \lambda_0)\dot U`$, with
+    /// $`\lambda_0`$ the `reference_load` the analysis linearised about (exact on a linear
+    /// fundamental path).
+    pub fn state_at(&self, reference_load: f64, load: f64) -> Vec<f64> {
+        self.prebuckling
+            .iter()
+            .zip(&self.prebuckling_rate)
+            .map(|(u, r)| u + (load - reference_load) * r)
+            .collect()
+    }
+}
+
 impl Default for LinearBucklingOptions {
     fn default() -> Self {
         LinearBucklingOptions {

@@ -144,25 +144,10 @@ pub struct WavenumberSearch {
     pub evaluations: Vec<WavenumberEvaluation>,
 }
 
-/// The warm start kept from an analysis: its pre-buckling state, load rate and reference load.
-fn warm_state(buckling: &LinearBuckling, reference_load: f64) -> (Vec<f64>, Vec<f64>, f64) {
-    (
-        buckling.prebuckling.clone(),
-        buckling.prebuckling_rate.clone(),
-        reference_load,
-    )
-}
-
 /// The state at the first critical load: the pre-buckling state extrapolated linearly from the
 /// reference load to $`\lambda_c`$.
 pub fn state_at_critical_load(buckling: &LinearBuckling, reference_load: f64) -> Vec<f64> {
-    let mu = buckling.critical_loads[0] - reference_load;
-    buckling
-        .prebuckling
-        .iter()
-        .zip(&buckling.prebuckling_rate)
-        .map(|(u, r)| u + mu * r)
-        .collect()
+    buckling.state_at(reference_load, buckling.critical_loads[0])
 }
 
 /// Legendre–Hadamard check of `problem` at the first critical load of `buckling`.
@@ -197,15 +182,12 @@ struct Searcher<'a, M: EnergyModel> {
     options: &'a WavenumberSearchOptions,
     observer: &'a mut dyn FnMut(&WavenumberEvaluation),
     evaluations: Vec<WavenumberEvaluation>,
-    /// The last pre-buckling state, its load rate and its load: the next analysis starts
-    /// Newton from the state extrapolated to its own reference load (exact on a linear
-    /// fundamental path, so that Newton needs no iteration).
-    warm_state: Option<(Vec<f64>, Vec<f64>, f64)>,
-    warm_mode: Option<Vec<f64>>,
+    /// The last analysis and the load it linearised about: the next one starts Newton from its
+    /// pre-buckling state extrapolated to its own reference load (exact on a linear fundamental
+    /// path, so that Newton needs no iteration) and Lanczos from its mode.
+    warm: Option<(LinearBuckling, f64)>,
     /// The last accepted critical load (the next evaluation's shift is a fraction of it).
     last_load: Option<f64>,
-    /// The last two accepted `(parameter, critical load)` of the scan, oldest first.
-    scan_trend: Vec<(f64, f64)>,
     best: Option<(f64, LinearBuckling, EllipticityReport, f64)>,
     scanning: bool,
 }
@@ -224,8 +206,7 @@ impl<M: EnergyModel> Searcher<'_, M> {
             Ok((buckling, ellipticity, reference)) => {
                 record.eigen_iterations = buckling.eigen_iterations;
                 let load = buckling.critical_loads[0];
-                self.warm_state = Some(warm_state(&buckling, reference));
-                self.warm_mode = buckling.modes.first().cloned();
+                self.warm = Some((buckling.clone(), reference));
                 if ellipticity.violated_fraction > self.options.max_violated_fraction {
                     record.rejected = Some(format!(
                         "not elliptic at its critical load {load:.6e} over {:.1} % of the area (worst at ({:.4}, {:.4}), field `{}`): a mesh-scale mode, not a threshold",
@@ -238,12 +219,6 @@ impl<M: EnergyModel> Searcher<'_, M> {
                 } else {
                     record.critical_load = Some(load);
                     self.last_load = Some(load);
-                    if self.scanning {
-                        self.scan_trend.push((parameter, load));
-                        if self.scan_trend.len() > 2 {
-                            self.scan_trend.remove(0);
-                        }
-                    }
                     if self
                         .best
                         .as_ref()
@@ -272,8 +247,14 @@ impl<M: EnergyModel> Searcher<'_, M> {
         if !self.scanning {
             return Some(last);
         }
-        let trend = match self.scan_trend.as_slice() {
-            [(q0, l0), (q1, l1)] if *q0 != *q1 && *l0 > 0.0 && *l1 > 0.0 => {
+        let mut accepted = self
+            .evaluations
+            .iter()
+            .rev()
+            .filter(|e| e.scan)
+            .filter_map(|e| e.critical_load.map(|load| (e.parameter, load)));
+        let trend = match (accepted.next(), accepted.next()) {
+            (Some((q1, l1)), Some((q0, l0))) if q0 != q1 && l0 > 0.0 && l1 > 0.0 => {
                 let exponent = (l1 / l0).ln() / (q1 / q0).ln();
                 l1 * (parameter / q1).powf(exponent)
             }
@@ -294,24 +275,15 @@ impl<M: EnergyModel> Searcher<'_, M> {
     ) -> Result<(LinearBuckling, EllipticityReport, f64), SolveError> {
         set_model_parameter(self.problem, self.options.parameter, parameter)?;
         let mut options = self.options.buckling.clone();
-        let warm = self.warm_state.as_ref();
-        let start_at = |load: f64| {
-            warm.map(|(state, rate, from)| {
-                state
-                    .iter()
-                    .zip(rate)
-                    .map(|(u, r)| u + (load - from) * r)
-                    .collect::<Vec<f64>>()
-            })
-        };
+        let warm = self.warm.as_ref();
+        let start_at = |load: f64| warm.map(|(buckling, from)| buckling.state_at(*from, load));
         options.initial_state = start_at(options.reference_load);
         // Without a neighbour's mode, a constant start vector: the modes searched here are
         // smooth envelopes, on which it has a large component where a pseudo-random vector has
         // mostly mesh-scale content (the first scan point on 64 × 32: 65 Lanczos iterations
         // against 163). The eigen-solver adds a small pseudo-random part to any start.
         options.eigen.start = Some(
-            self.warm_mode
-                .clone()
+            warm.and_then(|(buckling, _)| buckling.modes.first().cloned())
                 .unwrap_or_else(|| vec![1.0; self.problem.free_count()]),
         );
         if self.scanning {
@@ -386,10 +358,8 @@ pub fn minimise_critical_load<M: EnergyModel>(
         options,
         observer,
         evaluations: Vec::new(),
-        warm_state: None,
-        warm_mode: None,
+        warm: None,
         last_load: options.load_guess,
-        scan_trend: Vec::new(),
         best: None,
         scanning: true,
     };
@@ -435,8 +405,7 @@ pub fn minimise_critical_load<M: EnergyModel>(
     }
     // Refine in the bracket around the best scan point, warm-started from it.
     if let Some((_, buckling, _, reference)) = &searcher.best {
-        searcher.warm_state = Some(warm_state(buckling, *reference));
-        searcher.warm_mode = buckling.modes.first().cloned();
+        searcher.warm = Some((buckling.clone(), *reference));
         searcher.last_load = buckling.critical_loads.first().copied();
     }
     searcher.scanning = false;
