@@ -228,7 +228,14 @@ impl Snapshot<'_> {
                     real, imaginary, ..
                 } => 2.0 * value(n, real).hypot(value(n, imaginary)),
             })
-            .fold(0.0, f64::max)
+            // NaN propagates (`f64::max` would drop it and report a finite amplitude).
+            .fold(0.0, |largest: f64, value| {
+                if largest.is_nan() || value.is_nan() {
+                    f64::NAN
+                } else {
+                    largest.max(value)
+                }
+            })
     }
 
     /// Local wrinkle amplitude (mm) at `centre` (see the module documentation); `wavelength`

@@ -230,9 +230,16 @@ impl<M: EnergyModel> Problem<M> {
         } else {
             self.residual_scale(load)
         };
+        // NaN propagates (`f64::max` would drop it): an overflowed state is never "converged".
         let relative = (0..nf)
             .map(|f| residual_norm[f].sqrt() / scale[f].sqrt().max(floor))
-            .fold(0.0, f64::max);
+            .fold(0.0, |worst: f64, value| {
+                if worst.is_nan() || value.is_nan() {
+                    f64::NAN
+                } else {
+                    worst.max(value)
+                }
+            });
         (residual, relative)
     }
 }

@@ -545,3 +545,24 @@ fn displacement_control_uses_the_load_derivative_of_prescribed_values() {
         }
     }
 }
+
+/// A state that overflowed (as a diverging step end can) must never read as converged: the
+/// relative residual is NaN, not the 0 that `f64::max` would leave after dropping the NaN.
+#[test]
+fn overflowed_state_has_a_nan_relative_residual_not_zero() {
+    let problem = strip_problem(
+        NonlinearSpring {
+            k: 1.0,
+            b: 0.5,
+            c: 0.2,
+        },
+        2,
+    );
+    let positions = free_positions(&problem);
+    let exact: Vec<f64> = positions.iter().map(|x| 0.01 * x).collect();
+    let load = problem.assembler.model().stress(0.01);
+    assert!(problem.relative_residual(&exact, load) < 1e-12);
+    let overflowed: Vec<f64> = positions.iter().map(|x| 1e300 * x).collect();
+    let residual = problem.relative_residual(&overflowed, 1e300);
+    assert!(residual.is_nan(), "{residual}");
+}

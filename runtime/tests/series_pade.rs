@@ -100,6 +100,41 @@ fn pade_of_a_simple_pole_is_exact_up_to_the_pole() {
     assert!(distance(&combined(pade.evaluate(1.5 * radius)), &exact) < 1e-10 * norm(&exact));
 }
 
+/// The derivative of $`V(a)`$: $`\sum_j c_j \rho_j/(\rho_j - a)^2 + w`$.
+fn exact_derivative(path: &RationalPath, a: f64) -> Vec<f64> {
+    let mut value = path.linear.clone();
+    for (i, entry) in value.iter_mut().enumerate() {
+        for (radius, direction) in &path.poles {
+            *entry += direction[i] * radius / ((radius - a) * (radius - a));
+        }
+    }
+    value
+}
+
+#[test]
+fn pade_derivative_is_the_rational_functions_derivative_where_the_series_diverges() {
+    let path = RationalPath {
+        origin: vec![0.0, 1.0, 0.0, 0.0, 0.5],
+        poles: vec![
+            (1.5, vec![1.0, 0.0, -1.0, 0.5, 0.2]),
+            (0.4, vec![0.0, 2.0, 1.0, -1.0, 0.1]),
+        ],
+        linear: vec![1.0, 1.0, 0.0, 0.0, 1.0],
+    };
+    let series = path.series(14);
+    let pade = PadeApproximant::new(&series).unwrap();
+    for a in [0.0, 0.1, 0.3, 0.38, 0.6, 1.2] {
+        let exact = exact_derivative(&path, a);
+        let error = distance(&combined(pade.evaluate_derivative(a)), &exact) / norm(&exact);
+        assert!(error < 1e-9, "a = {a}: {error}");
+    }
+    // Past the pole (0.4) the series' own derivative has nothing to do with the path's.
+    let at = 0.6;
+    let exact = exact_derivative(&path, at);
+    let series_error = distance(&combined(series.evaluate_derivative(at)), &exact) / norm(&exact);
+    assert!(series_error > 10.0, "{series_error}");
+}
+
 #[test]
 fn smallest_positive_pole_is_the_radius_of_convergence() {
     for radius in [0.01, 0.7, 25.0] {

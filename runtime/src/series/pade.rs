@@ -129,6 +129,44 @@ impl PadeApproximant {
         self.split(self.evaluate_combined(&self.denominator, parameter))
     }
 
+    /// $`P_N'(a)`$ split into displacement and load: with the weights
+    /// $`w_k(a) = a^k D_{N-1-k}(a)/D_{N-1}(a)`$ of $`P_N = V_0 + \sum_k w_k V_k`$,
+    /// ```math
+    /// w_k' = \frac{k a^{k-1} D_{N-1-k} + a^k D_{N-1-k}'}{D_{N-1}}
+    ///      - \frac{a^k D_{N-1-k}\, D_{N-1}'}{D_{N-1}^2} .
+    /// ```
+    /// The tangent of the approximant where the ANM ends a step beyond the series' own range:
+    /// there the series' derivative is meaningless (it may even point backwards).
+    #[must_use]
+    pub fn evaluate_derivative(&self, parameter: f64) -> (Vec<f64>, f64) {
+        let degree = self.denominator.len() - 1;
+        // partial[j] = D_j(a), slope[j] = D_j'(a), j = 0..degree.
+        let (mut partial, mut slope) = (Vec::with_capacity(degree + 1), Vec::new());
+        let (mut sum, mut derivative, mut power) = (0.0, 0.0, 1.0);
+        for (i, coefficient) in self.denominator.iter().enumerate() {
+            if i > 0 {
+                derivative += i as f64 * coefficient * power;
+                power *= parameter;
+            }
+            sum += coefficient * power;
+            partial.push(sum);
+            slope.push(derivative);
+        }
+        let (full, full_slope) = (partial[degree], slope[degree]);
+        let mut result = vec![0.0; self.origin.len()];
+        for k in 1..=degree {
+            let (lower, lower_slope) = (partial[degree - k], slope[degree - k]);
+            let power = parameter.powi(k as i32);
+            let power_slope = k as f64 * parameter.powi(k as i32 - 1);
+            let weight = (power_slope * lower + power * lower_slope) / full
+                - power * lower * full_slope / (full * full);
+            for (target, value) in result.iter_mut().zip(&self.coefficients[k - 1]) {
+                *target += weight * value;
+            }
+        }
+        self.split(result)
+    }
+
     /// $`P_{N-1}(a)`$ (built on the orders $`1..N-1`$ only) split into displacement and load.
     #[must_use]
     pub fn evaluate_lower(&self, parameter: f64) -> (Vec<f64>, f64) {

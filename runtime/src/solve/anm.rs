@@ -292,6 +292,17 @@ fn evaluate(series: &PathSeries, pade: Option<&PadeApproximant>, a: f64) -> Path
     PathState { displacement, load }
 }
 
+/// The approximant a step evaluates at `a`: the Padé approximant beyond the plain series'
+/// range `plain` when Padé allowed a longer step, the series otherwise.
+fn approximant_at<'p>(
+    pade: Option<&'p PadeApproximant>,
+    plain: f64,
+    pade_length: Option<f64>,
+    a: f64,
+) -> Option<&'p PadeApproximant> {
+    pade.filter(|_| pade_length.is_some_and(|l| l > plain) && a > plain)
+}
+
 /// Traces the path from `start` with the ANM; every accepted point (step ends and the
 /// `interior_points` inside each step) goes to `observer`. Never panics on a numerical failure:
 /// the result keeps the last accepted point and says why it stopped.
@@ -414,8 +425,11 @@ impl<M: EnergyModel> AnmRun<'_, M> {
         let (plain, pade, pade_length) = self.ranges(&series);
         let end = self.accept_end(step, &series, pade.as_ref(), plain, pade_length)?;
         let evaluator = |a: f64| {
-            let use_pade = pade_length.is_some_and(|l| l > plain && a > plain);
-            evaluate(&series, if use_pade { pade.as_ref() } else { None }, a)
+            evaluate(
+                &series,
+                approximant_at(pade.as_ref(), plain, pade_length, a),
+                a,
+            )
         };
         let mut record = AnmStep {
             step,
@@ -449,8 +463,14 @@ impl<M: EnergyModel> AnmRun<'_, M> {
         steps_log.push(record);
         self.statistics.steps = step;
         // The next step continues the path tangent at this step's end (not at its start: past a
-        // sharp turn the two can point apart).
-        self.previous_direction = Some(series.evaluate_derivative(end.step_length));
+        // sharp turn the two can point apart), taken from the approximant that gave the end:
+        // beyond the series' range its derivative is meaningless and can point backwards.
+        self.previous_direction = Some(
+            match approximant_at(pade.as_ref(), plain, pade_length, end.step_length) {
+                Some(p) => p.evaluate_derivative(end.step_length),
+                None => series.evaluate_derivative(end.step_length),
+            },
+        );
         self.previous_start = Some((std::mem::replace(&mut self.state, end.state), u_hat));
         let event = PathEvent {
             step,
@@ -596,10 +616,7 @@ impl<M: EnergyModel> AnmRun<'_, M> {
         pade_length: Option<f64>,
     ) -> Result<AcceptedEnd, SolveError> {
         let options = self.options;
-        let evaluator = |a: f64| {
-            let use_pade = pade_length.is_some_and(|l| l > plain && a > plain);
-            evaluate(series, if use_pade { pade } else { None }, a)
-        };
+        let evaluator = |a: f64| evaluate(series, approximant_at(pade, plain, pade_length, a), a);
         let mut a = match pade_length {
             Some(l) if l.is_finite() && l > plain => l,
             _ => plain,
