@@ -238,7 +238,8 @@ pub struct SolverSpec {
     /// Shape of the imperfection, key `solver.imperfection`: `"auto"` (uniform for envelope
     /// models, mode-shaped for the others), `"uniform"` or `"mode"`.
     pub imperfection: Imperfection,
-    /// Use Padé approximants, key `solver.pade`.
+    /// Use Padé approximants to lengthen ANM steps, key `solver.pade` (default `true`: the
+    /// fastest method measured on every registered model, `docs/benchmarks.md`).
     pub pade: bool,
     /// Key `solver.method`.
     pub method: PathMethod,
@@ -358,7 +359,7 @@ impl Default for Scene {
                 max_amplitude_over_thickness: 4.0,
                 perturbation: 1e-4,
                 imperfection: Imperfection::Auto,
-                pade: false,
+                pade: true,
                 method: PathMethod::Anm,
             },
             output: OutputSpec {

@@ -51,6 +51,30 @@ fn interpolate(
     })
 }
 
+/// Checks that every point of `points` lies on the curve `curve` (max a/h interpolated in λ) to
+/// the relative `tolerance`; returns how many points fell inside `curve`'s load range.
+fn assert_on_curve<'a>(
+    points: impl Iterator<Item = &'a PathPoint>,
+    curve: &[PathPoint],
+    tolerance: f64,
+    what: &str,
+) -> usize {
+    let mut compared = 0;
+    for p in points {
+        if let Some(w) = interpolate(curve, p.lambda, |q| q.max_amplitude_over_h) {
+            let difference = (w - p.max_amplitude_over_h).abs() / p.max_amplitude_over_h;
+            assert!(
+                difference < tolerance,
+                "{what}, λ {}: {w} on the curve vs {}",
+                p.lambda,
+                p.max_amplitude_over_h
+            );
+            compared += 1;
+        }
+    }
+    compared
+}
+
 fn check_example_one(nx: usize, ny: usize, order: usize) {
     let settings = [
         format!("mesh.nx={nx}"),
@@ -118,19 +142,12 @@ fn check_example_one(nx: usize, ny: usize, order: usize) {
     let riks_dir = output_directory(&format!("example-one-riks-{nx}x{ny}"));
     let riks = run(&scene(&riks_settings), &riks_dir, true).unwrap();
     let riks_points = path_of(&riks.summary);
-    let mut compared = 0;
-    for p in riks_points.iter().filter(|p| p.lambda > 1.01 * lambda_c) {
-        if let Some(anm) = interpolate(&points, p.lambda, |q| q.max_amplitude_over_h) {
-            let difference = (anm - p.max_amplitude_over_h).abs() / p.max_amplitude_over_h;
-            assert!(
-                difference < 1e-2,
-                "λ {}: ANM {anm} vs Riks {}",
-                p.lambda,
-                p.max_amplitude_over_h
-            );
-            compared += 1;
-        }
-    }
+    let compared = assert_on_curve(
+        riks_points.iter().filter(|p| p.lambda > 1.01 * lambda_c),
+        &points,
+        1e-2,
+        "Riks points on the ANM curve",
+    );
     eprintln!(
         "compared {compared} Riks points; ANM {} steps / {} factorisations, Riks {} steps / {} factorisations",
         summary["steps"],
@@ -183,22 +200,69 @@ fn example_one_large_steps_are_corrected_on_the_arc() {
     let coarse_points = path_of(&coarse.summary);
     let fine_points = path_of(&fine.summary);
     assert!(coarse_points.iter().all(|p| p.residual <= 1e-6));
-    let mut compared = 0;
-    for p in coarse_points
-        .iter()
-        .filter(|p| !p.interior && p.max_amplitude_over_h > 0.1)
-    {
-        if let Some(w) = interpolate(&fine_points, p.lambda, |q| q.max_amplitude_over_h) {
-            assert!(
-                (w - p.max_amplitude_over_h).abs() / p.max_amplitude_over_h < 1e-3,
-                "λ {}: {w} vs {}",
-                p.lambda,
-                p.max_amplitude_over_h
-            );
-            compared += 1;
-        }
-    }
+    let compared = assert_on_curve(
+        coarse_points
+            .iter()
+            .filter(|p| !p.interior && p.max_amplitude_over_h > 0.1),
+        &fine_points,
+        1e-3,
+        "ε = 1e-4 step ends on the ε = 1e-7 curve",
+    );
     assert!(compared >= 2);
     let _ = std::fs::remove_dir_all(&coarse_dir);
     let _ = std::fs::remove_dir_all(&fine_dir);
+}
+
+/// ANM with Padé approximants (the default) and the classical ANM trace the same curve, and the
+/// Padé path moves forward: every step end is further in load and amplitude than the last
+/// (example 1 has no limit point). Padé's steps end beyond the series' range, where the series'
+/// own derivative is meaningless; orienting the next step with it once turned the path back
+/// through zero load to λ ≈ −3e27, reported as "reached".
+#[test]
+fn example_one_pade_and_plain_series_trace_the_same_curve_forward() {
+    let base = [
+        "mesh.nx=16",
+        "mesh.ny=8",
+        "solver.max_amplitude_over_h=4",
+        "output.plots=false",
+        "output.vtu=false",
+        "output.surface=false",
+    ];
+    let mut paths = Vec::new();
+    for pade in ["solver.pade=true", "solver.pade=false"] {
+        let mut settings = base.to_vec();
+        settings.push(pade);
+        let dir = output_directory(pade);
+        let report = run(&scene(&settings), &dir, true).unwrap();
+        assert!(report.failure.is_none(), "{pade}");
+        let points = path_of(&report.summary);
+        assert!(points.iter().all(|p| p.residual <= 1e-6), "{pade}");
+        let last = points.last().unwrap();
+        assert!(last.max_amplitude_over_h >= 4.0 && last.max_amplitude_over_h < 5.0);
+        let ends: Vec<&PathPoint> = points.iter().filter(|p| !p.interior).collect();
+        for pair in ends.windows(2) {
+            assert!(
+                pair[1].lambda > pair[0].lambda
+                    && pair[1].max_amplitude_over_h > pair[0].max_amplitude_over_h,
+                "{pade}: the path turned back between λ = {} and {}",
+                pair[0].lambda,
+                pair[1].lambda
+            );
+        }
+        paths.push((ends.len(), points));
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+    let [(pade_steps, pade), (plain_steps, plain)] = [paths.remove(0), paths.remove(0)];
+    assert!(
+        pade_steps < plain_steps,
+        "Padé {pade_steps} steps, plain {plain_steps}"
+    );
+    let compared = assert_on_curve(
+        pade.iter()
+            .filter(|p| !p.interior && p.max_amplitude_over_h > 0.1),
+        &plain,
+        1e-3,
+        "Padé step ends on the plain ANM curve",
+    );
+    assert!(compared >= 3, "{compared}");
 }

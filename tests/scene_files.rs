@@ -102,7 +102,7 @@ fn overrides_parse_toml_values_and_bare_words() {
         "model.wavenumber=auto",
         "load.kind=strip",
         "solver.method=\"riks\"",
-        "solver.pade=true",
+        "solver.pade=false",
         "output.vtu_loads=[0.1, 2]",
         "mesh.nx = 12",
         "model.parameters.delta=1e-3",
@@ -114,7 +114,7 @@ fn overrides_parse_toml_values_and_bare_words() {
     assert_eq!(scene.model.wavenumber, Wavenumber::Auto);
     assert_eq!(scene.load.kind, LoadKind::Strip);
     assert_eq!(scene.solver.method, PathMethod::Riks);
-    assert!(scene.solver.pade);
+    assert!(!scene.solver.pade);
     assert_eq!(scene.output.vtu_loads, vec![0.1, 2.0]);
     assert_eq!(scene.mesh.elements_x, 12);
     assert_eq!(
@@ -350,7 +350,7 @@ fn effective_toml_round_trips() {
         "model.parameters.\"odd name\"=2",
         "output.vtu_loads=[0.05, 0.1]",
         "output.directory=\"out dir/with \\\"quotes\\\"\"",
-        "solver.pade=true",
+        "solver.pade=false",
         "mesh.grading=3.5",
         "output.surface=false",
         "validity.accept=[\"ellipticity\", \"mode_resolution\"]",

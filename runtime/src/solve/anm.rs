@@ -58,7 +58,9 @@ pub struct AnmOptions {
     pub max_steps: usize,
     /// Stop at this load (`None`: no limit).
     pub max_load: Option<f64>,
-    /// Use Padé approximants (common denominator) for the step range and evaluation.
+    /// Use Padé approximants (common denominator) for the step range and evaluation beyond
+    /// the plain series' range (default: on). A Padé-extended step whose end gained negative
+    /// pivots (it jumped over a critical point) is redone with the series' range.
     pub pade: bool,
     /// Points evaluated inside each step (dense output).
     pub interior_points: usize,
@@ -85,7 +87,7 @@ impl Default for AnmOptions {
             residual_tolerance: 1e-6,
             max_steps: 200,
             max_load: None,
-            pade: false,
+            pade: true,
             interior_points: 10,
             corrector: NewtonOptions {
                 tolerance: 1e-9,
@@ -109,7 +111,9 @@ pub struct AnmStep {
     pub step_length: f64,
     /// Range the plain series allowed (for comparison with Padé).
     pub series_step_length: f64,
-    /// Range Padé allowed (when enabled).
+    /// Range Padé allowed (when enabled). The step used it when `step_length` exceeds
+    /// `series_step_length`; a Padé range that was longer but not used means the Padé end
+    /// jumped over a critical point and the step was redone with the series' range.
     pub pade_step_length: Option<f64>,
     /// Relative residual at the end point before any correction.
     pub end_residual: f64,
@@ -294,12 +298,12 @@ fn evaluate(series: &PathSeries, pade: Option<&PadeApproximant>, a: f64) -> Path
 
 /// The approximant a step evaluates at `a`: the Padé approximant beyond the plain series'
 /// range `plain` when Padé allowed a longer step, the series otherwise.
-fn approximant_at<'p>(
-    pade: Option<&'p PadeApproximant>,
+fn approximant_at(
+    pade: Option<&PadeApproximant>,
     plain: f64,
     pade_length: Option<f64>,
     a: f64,
-) -> Option<&'p PadeApproximant> {
+) -> Option<&PadeApproximant> {
     pade.filter(|_| pade_length.is_some_and(|l| l > plain) && a > plain)
 }
 
@@ -331,6 +335,8 @@ pub fn follow_path_anm<M: EnergyModel>(
         prediction: None,
         bifurcation: None,
         warnings: Vec::new(),
+        end_check: None,
+        start_factorized: false,
     };
     let start_residual = problem.relative_residual(&run.state.displacement, run.state.load);
     run.statistics.residual_assemblies += 1;
@@ -374,6 +380,12 @@ struct AnmRun<'a, M: EnergyModel> {
     prediction: Option<f64>,
     bifurcation: Option<(f64, usize)>,
     warnings: Vec<String>,
+    /// With Padé: a second tangent and factorisation for the end of a Padé-extended step,
+    /// where its inertia is checked (see [`AnmRun::jumped_over_critical_point`]).
+    end_check: Option<(SparseMatrix, SparseFactorization)>,
+    /// The tangent at the current start is already assembled and factorised (by the end check
+    /// of the previous step).
+    start_factorized: bool,
 }
 
 /// How a step's end point was accepted.
@@ -422,8 +434,19 @@ impl<M: EnergyModel> AnmRun<'_, M> {
         self.statistics.series_assemblies += series.order() - 1;
         self.statistics.series_seconds += t.elapsed().as_secs_f64();
         let predicted = self.watch_bifurcation(step, &series, &u_hat);
-        let (plain, pade, pade_length) = self.ranges(&series);
-        let end = self.accept_end(step, &series, pade.as_ref(), plain, pade_length)?;
+        let (plain, pade, offered) = self.ranges(&series);
+        let mut pade_length = offered;
+        let mut end = self.accept_end(step, &series, pade.as_ref(), plain, pade_length)?;
+        if approximant_at(pade.as_ref(), plain, pade_length, end.step_length).is_some()
+            && self.jumped_over_critical_point(step, &end.state)?
+        {
+            // Padé's longer step crossed a critical point that the plain series stops short of
+            // (near a nearly perfect bifurcation the singular part is too small for Padé's
+            // criterion): the step is redone with the series' own range.
+            self.statistics.rejected_steps += 1;
+            pade_length = None;
+            end = self.accept_end(step, &series, None, plain, None)?;
+        }
         let evaluator = |a: f64| {
             evaluate(
                 &series,
@@ -436,7 +459,7 @@ impl<M: EnergyModel> AnmRun<'_, M> {
             load_range: (self.state.load, end.state.load),
             step_length: end.step_length,
             series_step_length: plain,
-            pade_step_length: pade_length,
+            pade_step_length: offered,
             end_residual: end.residual,
             correction_iterations: end.corrections,
             geometric_radius: geometric_ratio(&series),
@@ -489,20 +512,20 @@ impl<M: EnergyModel> AnmRun<'_, M> {
     /// (negative pivots of $`LDL^\top`$, none after $`LL^\top`$) reveals a critical point crossed
     /// during the previous step, which is then located.
     fn factorize_tangent(&mut self, step: usize) -> Result<(), SolveError> {
-        let t = Instant::now();
-        self.problem
-            .tangent_into(&self.state.displacement, self.state.load, &mut self.matrix);
-        self.statistics.tangent_assemblies += 1;
-        self.statistics.assembly_seconds += t.elapsed().as_secs_f64();
-        let t = Instant::now();
-        self.factor
-            .factorize(&self.matrix)
+        if !std::mem::take(&mut self.start_factorized) {
+            let (problem, state) = (self.problem, &self.state);
+            Self::assemble_and_factorize(
+                problem,
+                state,
+                &mut self.matrix,
+                self.factor,
+                &mut self.statistics,
+            )
             .map_err(SolveError::linear(format!(
                 "ANM step {step} at load {:.6e}: tangent factorisation",
                 self.state.load
             )))?;
-        self.statistics.factorizations += 1;
-        self.statistics.factorization_seconds += t.elapsed().as_secs_f64();
+        }
         let negative = self.factor.negative_pivots();
         if let (Some(before), Some(now)) = (self.negative_pivots, negative)
             && now > before
@@ -513,6 +536,70 @@ impl<M: EnergyModel> AnmRun<'_, M> {
         }
         self.negative_pivots = negative;
         Ok(())
+    }
+
+    /// The tangent at `state` into `matrix`, factorised into `factor` (timed and counted).
+    fn assemble_and_factorize(
+        problem: &Problem<M>,
+        state: &PathState,
+        matrix: &mut SparseMatrix,
+        factor: &mut SparseFactorization,
+        statistics: &mut PathStatistics,
+    ) -> Result<(), crate::linear::error::LinearError> {
+        let t = Instant::now();
+        problem.tangent_into(&state.displacement, state.load, matrix);
+        statistics.tangent_assemblies += 1;
+        statistics.assembly_seconds += t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        factor.factorize(matrix)?;
+        statistics.factorizations += 1;
+        statistics.factorization_seconds += t.elapsed().as_secs_f64();
+        Ok(())
+    }
+
+    /// Whether the end `end` of a Padé-extended step has more negative pivots than the step's
+    /// start: the step jumped over a critical point (typically onto the unstable fundamental
+    /// branch past a bifurcation). Otherwise the end's tangent and factorisation become the
+    /// next step's (no extra cost). A failed factorisation at the end (singular: a critical
+    /// point exactly there) counts as a jump. Without inertia (LU) nothing is checked.
+    fn jumped_over_critical_point(
+        &mut self,
+        step: usize,
+        end: &PathState,
+    ) -> Result<bool, SolveError> {
+        let Some(before) = self.negative_pivots else {
+            return Ok(false);
+        };
+        let (mut matrix, mut factor) = match self.end_check.take() {
+            Some(pair) => pair,
+            None => (
+                self.problem.new_matrix(),
+                SparseFactorization::analyze(self.problem.assembler.pattern()).map_err(
+                    SolveError::linear(format!(
+                        "ANM step {step}: symbolic analysis for the end-point check"
+                    )),
+                )?,
+            ),
+        };
+        let factorized = Self::assemble_and_factorize(
+            self.problem,
+            end,
+            &mut matrix,
+            &mut factor,
+            &mut self.statistics,
+        );
+        let jumped = match (factorized, factor.negative_pivots()) {
+            (Err(_), _) => true,
+            (Ok(()), Some(after)) => after > before,
+            (Ok(()), None) => false,
+        };
+        if !jumped {
+            std::mem::swap(&mut self.matrix, &mut matrix);
+            std::mem::swap(self.factor, &mut factor);
+            self.start_factorized = true;
+        }
+        self.end_check = Some((matrix, factor));
+        Ok(jumped)
     }
 
     /// Linear buckling about the previous step's start (where the tangent was still positive
