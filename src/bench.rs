@@ -1,10 +1,11 @@
 //! `wrinkle bench`: run time against error.
 //!
 //! For each model the scene is run at a **reference** point — the finest mesh of the plan, the
-//! highest ANM order $`N`$ and the tightest series tolerance $`\varepsilon`$ — and then along three
-//! one-factor sweeps around it: the mesh (at the reference's $`N`$ and $`\varepsilon`$), the
-//! order (at the reference mesh and $`\varepsilon`$) and the series tolerance (at the reference
-//! mesh and $`N`$). Every point is a whole [`crate::run::run`] (threshold search, imperfection,
+//! highest ANM order $`N`$, the tightest series tolerance $`\varepsilon`$ and the default
+//! method (ANM with Padé approximants) — and then along three one-factor sweeps around it: the
+//! mesh (at the reference's $`N`$ and $`\varepsilon`$) for **every path method** ([`Method`]: ANM
+//! with Padé, classical ANM, Newton–Riks), the order (at the reference mesh and $`\varepsilon`$)
+//! and the series tolerance (at the reference mesh and $`N`$) for both ANM variants. Every point is a whole [`crate::run::run`] (threshold search, imperfection,
 //! path to the amplitude target [`TARGET_AMPLITUDE`]); its wall times are read from the run's
 //! `summary.json` (`timings.threshold`, `timings.path`, `timings.total`), and three results
 //! are compared with the reference of the **same** model:
@@ -34,7 +35,7 @@ mod plot;
 use crate::Error;
 use crate::output::{PathPoint, write_bytes_atomically, write_json};
 use crate::run::{RunOutcome, run};
-use crate::scene::{Scene, Wavenumber};
+use crate::scene::{PathMethod, Scene, Wavenumber};
 use crate::threshold::{closed_form_threshold, load_unit};
 use serde_json::json;
 use std::path::Path;
@@ -51,9 +52,10 @@ pub const LOAD_RATIO: f64 = 1.1;
 pub const TARGET_AMPLITUDE: f64 = 2.0;
 
 /// The columns of `bench.csv`, in order.
-pub const CSV_COLUMNS: [&str; 22] = [
+pub const CSV_COLUMNS: [&str; 23] = [
     "model",
     "sweep",
+    "method",
     "outcome",
     "nx",
     "ny",
@@ -102,6 +104,46 @@ impl Sweep {
     }
 }
 
+/// The path-following method of a point.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Method {
+    /// ANM with Padé approximants (`solver.pade = true`, the default).
+    AnmPade,
+    /// The classical ANM: power series only (`solver.pade = false`).
+    Anm,
+    /// Newton–Riks arc length (`solver.method = "riks"`; order and ε unused).
+    Riks,
+}
+
+impl Method {
+    /// Every method, the default first.
+    pub const ALL: [Method; 3] = [Method::AnmPade, Method::Anm, Method::Riks];
+
+    /// Name in the CSV and JSON files and the run directories.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Method::AnmPade => "anm-pade",
+            Method::Anm => "anm",
+            Method::Riks => "riks",
+        }
+    }
+
+    /// Name in the plot's legend.
+    pub fn label(self) -> &'static str {
+        match self {
+            Method::AnmPade => "ANM+Padé",
+            Method::Anm => "ANM",
+            Method::Riks => "Riks",
+        }
+    }
+
+    /// Whether the ANM order and series tolerance mean anything for this method.
+    pub fn is_anm(self) -> bool {
+        self != Method::Riks
+    }
+}
+
 /// The settings a point varies.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
@@ -113,6 +155,8 @@ pub struct Settings {
     pub order: usize,
     /// Series tolerance $`\varepsilon`$ of the step length.
     pub series_tolerance: f64,
+    /// Path-following method.
+    pub method: Method,
 }
 
 /// The sweeps of one model.
@@ -157,7 +201,7 @@ impl Plan {
         }
     }
 
-    /// Finest mesh, highest order, tightest tolerance.
+    /// Finest mesh, highest order, tightest tolerance, default method.
     pub fn reference(&self) -> Settings {
         let (nx, ny) = self.meshes.last().copied().unwrap_or((32, 16));
         Settings {
@@ -165,30 +209,45 @@ impl Plan {
             ny,
             order: self.orders.iter().copied().max().unwrap_or(20),
             series_tolerance: self.tolerances.iter().copied().fold(1e-7, f64::min),
+            method: Method::AnmPade,
         }
     }
 
-    /// Every point but the reference: the mesh, order and tolerance sweeps, in that order.
+    /// Every point but the reference: the mesh sweep of every method, then the order and
+    /// tolerance sweeps of both ANM variants.
     pub fn points(&self) -> Vec<(Sweep, Settings)> {
         let reference = self.reference();
-        let meshes = self.meshes.iter().map(|&(nx, ny)| {
-            let settings = Settings {
-                nx,
-                ny,
-                ..reference
-            };
-            (Sweep::Mesh, settings)
+        let meshes = Method::ALL.into_iter().flat_map(|method| {
+            self.meshes.iter().map(move |&(nx, ny)| {
+                let settings = Settings {
+                    nx,
+                    ny,
+                    method,
+                    ..reference
+                };
+                (Sweep::Mesh, settings)
+            })
         });
-        let orders = self.orders.iter().map(|&order| {
-            let settings = Settings { order, ..reference };
-            (Sweep::Order, settings)
+        let anm = Method::ALL.into_iter().filter(|m| m.is_anm());
+        let orders = anm.clone().flat_map(|method| {
+            self.orders.iter().map(move |&order| {
+                let settings = Settings {
+                    order,
+                    method,
+                    ..reference
+                };
+                (Sweep::Order, settings)
+            })
         });
-        let tolerances = self.tolerances.iter().map(|&series_tolerance| {
-            let settings = Settings {
-                series_tolerance,
-                ..reference
-            };
-            (Sweep::Tolerance, settings)
+        let tolerances = anm.flat_map(|method| {
+            self.tolerances.iter().map(move |&series_tolerance| {
+                let settings = Settings {
+                    series_tolerance,
+                    method,
+                    ..reference
+                };
+                (Sweep::Tolerance, settings)
+            })
         });
         meshes
             .chain(orders)
@@ -250,6 +309,8 @@ pub struct SettingsRecord {
     pub order: usize,
     /// Series tolerance.
     pub series_tolerance: f64,
+    /// Path-following method.
+    pub method: Method,
 }
 
 /// The three results of a point.
@@ -498,6 +559,11 @@ fn point_scene(
     point.mesh.elements_y = settings.ny;
     point.solver.order = settings.order;
     point.solver.series_tolerance = settings.series_tolerance;
+    point.solver.pade = settings.method == Method::AnmPade;
+    point.solver.method = match settings.method {
+        Method::Riks => PathMethod::Riks,
+        Method::Anm | Method::AnmPade => PathMethod::Anm,
+    };
     point.solver.max_amplitude_over_thickness = TARGET_AMPLITUDE;
     point.output.plots = false;
     point.output.vtu_loads.clear();
@@ -516,8 +582,9 @@ fn run_point(
 ) -> Result<BenchRow, Error> {
     let point = point_scene(scene, model, settings, wavenumber)?;
     let name = format!(
-        "{}-{}x{}-order{}-tol{:.0e}",
+        "{}-{}-{}x{}-order{}-tol{:.0e}",
         sweep.as_str(),
+        settings.method.as_str(),
         settings.nx,
         settings.ny,
         settings.order,
@@ -526,8 +593,9 @@ fn run_point(
     progress.done += 1;
     let label = format!("bench [{}/{}] {model}", progress.done, progress.total);
     eprintln!(
-        "{label} {}: {}×{}, N = {}, ε = {:.0e}{}",
+        "{label} {} {}: {}×{}, N = {}, ε = {:.0e}{}",
         sweep.as_str(),
+        settings.method.label(),
         settings.nx,
         settings.ny,
         settings.order,
@@ -545,6 +613,7 @@ fn run_point(
             ny: settings.ny,
             order: settings.order,
             series_tolerance: settings.series_tolerance,
+            method: settings.method,
         },
         dofs: None,
         wavenumber,
@@ -621,6 +690,7 @@ pub fn bench_csv(bench: &Bench) -> String {
         let line = [
             row.model.clone(),
             row.sweep.as_str().to_string(),
+            row.settings.method.as_str().to_string(),
             row.outcome.clone(),
             row.settings.nx.to_string(),
             row.settings.ny.to_string(),
@@ -659,7 +729,7 @@ fn write_bench(scene: &Scene, bench: &Bench, directory: &Path) -> Result<(), Err
         .filter(|r| r.sweep == Sweep::Reference)
         .map(|r| {
             json!({
-                "model": r.model, "nx": r.settings.nx, "ny": r.settings.ny,
+                "model": r.model, "method": r.settings.method, "nx": r.settings.nx, "ny": r.settings.ny,
                 "order": r.settings.order, "series_tolerance": r.settings.series_tolerance,
                 "wavenumber": r.wavenumber, "outcome": r.outcome,
                 "critical_load": r.measured.critical_load,
@@ -691,9 +761,10 @@ fn write_bench(scene: &Scene, bench: &Bench, directory: &Path) -> Result<(), Err
 /// The benchmark as a compact text table for the terminal.
 pub fn bench_table(bench: &Bench) -> String {
     let mut text = format!(
-        "{:<18} {:<9} {:>7} {:>6} {:>3} {:>5} {:>5} {:>8} {:>8} {:>8} {:>9} {:>9} {:>9}  outcome\n",
+        "{:<18} {:<9} {:<8} {:>7} {:>6} {:>3} {:>5} {:>5} {:>8} {:>8} {:>8} {:>9} {:>9} {:>9}  outcome\n",
         "model",
         "sweep",
+        "method",
         "mesh",
         "dofs",
         "N",
@@ -710,9 +781,10 @@ pub fn bench_table(bench: &Bench) -> String {
     let error = |e: Option<f64>| e.map_or("—".to_string(), |e| format!("{e:.2e}"));
     for row in &bench.rows {
         text.push_str(&format!(
-            "{:<18} {:<9} {:>7} {:>6} {:>3} {:>5.0e} {:>5} {:>8} {:>8} {:>8} {:>9} {:>9} {:>9}  {}\n",
+            "{:<18} {:<9} {:<8} {:>7} {:>6} {:>3} {:>5.0e} {:>5} {:>8} {:>8} {:>8} {:>9} {:>9} {:>9}  {}\n",
             row.model,
             row.sweep.as_str(),
+            row.settings.method.label(),
             format!("{}×{}", row.settings.nx, row.settings.ny),
             row.dofs.map_or("—".into(), |d| d.to_string()),
             row.settings.order,
@@ -734,8 +806,9 @@ pub fn bench_table(bench: &Bench) -> String {
         let m = &row.measured;
         let value = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.8e}"));
         text.push_str(&format!(
-            "reference {}: {}×{}, N = {}, ε = {:.0e}: λ_c = {}, λ(a/h=1) = {}, a/h(1.1 λ_c) = {}\n",
+            "reference {}: {}, {}×{}, N = {}, ε = {:.0e}: λ_c = {}, λ(a/h=1) = {}, a/h(1.1 λ_c) = {}\n",
             row.model,
+            row.settings.method.label(),
             row.settings.nx,
             row.settings.ny,
             row.settings.order,
@@ -814,8 +887,22 @@ mod tests {
         assert_eq!((reference.nx, reference.ny), (64, 32));
         assert_eq!(reference.order, 30);
         assert_eq!(reference.series_tolerance, 1e-9);
+        assert_eq!(reference.method, Method::AnmPade);
         let points = plan.points();
-        assert_eq!(points.len(), 3 + 4 + 5);
+        // Meshes × 3 methods, orders and tolerances × 2 ANM variants, less the reference.
+        assert_eq!(points.len(), (4 * 3 - 1) + (5 * 2 - 1) + (6 * 2 - 1));
         assert!(points.iter().all(|(_, s)| *s != reference));
+        for method in Method::ALL {
+            let meshes = points
+                .iter()
+                .filter(|(sweep, s)| *sweep == Sweep::Mesh && s.method == method)
+                .count();
+            assert_eq!(meshes, if method == Method::AnmPade { 3 } else { 4 });
+        }
+        assert!(
+            points
+                .iter()
+                .all(|(sweep, s)| s.method.is_anm() || *sweep == Sweep::Mesh)
+        );
     }
 }

@@ -6,9 +6,10 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-const COLUMNS: [&str; 22] = [
+const COLUMNS: [&str; 23] = [
     "model",
     "sweep",
+    "method",
     "outcome",
     "nx",
     "ny",
@@ -37,6 +38,9 @@ const ERRORS: [&str; 4] = [
     "error_load_at_amplitude_1",
     "error_amplitude_at_1_1",
 ];
+
+/// Largest relative spread of λ(a/h = 1) between ANM+Padé, ANM and Riks on one mesh.
+const METHOD_AGREEMENT: f64 = 1e-3;
 
 fn directory(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("wrinkle-test-{name}-{}", std::process::id()));
@@ -109,10 +113,11 @@ fn quick_bench_converges_with_the_mesh_and_measures_against_its_reference() {
     let closed_form = number(reference[0], "error_critical_load_closed_form").unwrap();
     assert!(closed_form < 1e-2, "reference vs eq. (42): {closed_form}");
 
-    // Mesh convergence: coarse to fine, then the reference (the finest mesh).
+    // Mesh convergence: coarse to fine, then the reference (the finest mesh, default method).
+    assert_eq!(reference[0][column("method")], "anm-pade");
     let mut mesh: Vec<(f64, f64)> = rows
         .iter()
-        .filter(|r| r[column("sweep")] == "mesh")
+        .filter(|r| r[column("sweep")] == "mesh" && r[column("method")] == "anm-pade")
         .chain(reference.iter().copied())
         .map(|r| {
             (
@@ -127,6 +132,39 @@ fn quick_bench_converges_with_the_mesh_and_measures_against_its_reference() {
         mesh.windows(2).all(|pair| pair[1].1 < pair[0].1),
         "λ_c error does not decrease with the mesh: {mesh:?}"
     );
+
+    // Three independent path methods on each mesh: the same load at a/h = 1 (every point of
+    // each is at the residual tolerance; what differs is where the points fall).
+    let mesh_rows = || {
+        rows.iter()
+            .filter(|r| matches!(r[column("sweep")].as_str(), "mesh" | "reference"))
+    };
+    let mut meshes: Vec<&str> = mesh_rows().map(|r| r[column("dofs")].as_str()).collect();
+    meshes.sort();
+    meshes.dedup();
+    for dofs in meshes {
+        let loads: Vec<(String, f64)> = mesh_rows()
+            .filter(|r| r[column("dofs")] == dofs)
+            .map(|r| {
+                let load = number(r, "load_at_amplitude_1").unwrap();
+                (r[column("method")].clone(), load)
+            })
+            .collect();
+        let methods: Vec<&str> = loads.iter().map(|(m, _)| m.as_str()).collect();
+        assert_eq!(methods.len(), 3, "{dofs} dofs: {loads:?}");
+        for method in ["anm-pade", "anm", "riks"] {
+            assert!(methods.contains(&method), "{dofs} dofs: {loads:?}");
+        }
+        let (low, high) = loads
+            .iter()
+            .fold((f64::INFINITY, 0.0_f64), |(l, h), (_, x)| {
+                (l.min(*x), h.max(*x))
+            });
+        assert!(
+            (high - low) / low < METHOD_AGREEMENT,
+            "{dofs} dofs: methods disagree on λ(a/h = 1): {loads:?}"
+        );
+    }
 
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("bench.json")).unwrap()).unwrap();

@@ -1,5 +1,6 @@
 //! `bench.png|svg`: relative error against total run time, log–log, one panel per compared
-//! quantity and one series per sweep (and model), each point tagged with the setting it varies.
+//! quantity and one series per sweep and path method (and model), each point tagged with the
+//! setting it varies.
 //!
 //! Drawn in the house style of [`crate::output::plots`] (the bundled DejaVu Sans font, the
 //! Tableau colours, a supersampled PNG and an SVG, the legend below the panels). Those helpers
@@ -7,7 +8,7 @@
 //! (the reference itself, or $`\lambda_c`$ at a fixed wavenumber) has no place on a log axis
 //! and is left out.
 
-use super::{Bench, BenchRow, Sweep};
+use super::{Bench, BenchRow, Method, Sweep};
 use crate::output::{write_atomically_via_path, write_bytes_atomically};
 use plotters::coord::Shift;
 use plotters::element::DashedPathElement;
@@ -42,6 +43,8 @@ const CLOSED_FORM_COLOR: RGBColor = RGBColor(60, 60, 60);
 /// One polyline of `(time, error)` points with a tag per point, in the order of the sweep.
 struct Series {
     label: String,
+    /// The sweep it shows (`None`: the comparison with the closed form).
+    sweep: Option<Sweep>,
     color: RGBColor,
     dashed: bool,
     points: Vec<(f64, f64, String)>,
@@ -63,36 +66,51 @@ fn tag(row: &BenchRow) -> String {
     }
 }
 
-/// The series of one quantity: per model, the mesh, order and tolerance sweeps.
+/// The series of one quantity: per model, the mesh sweep of every method, then the order and
+/// tolerance sweeps of each ANM variant (those the bench ran). Colours follow the series' order,
+/// the same in every panel.
 fn sweep_series(bench: &Bench, error: fn(&BenchRow) -> Option<f64>) -> Vec<Series> {
     let mut models: Vec<&str> = bench.rows.iter().map(|r| r.model.as_str()).collect();
     models.dedup();
     let several = models.len() > 1;
     let mut series = Vec::new();
-    for (m, model) in models.iter().enumerate() {
-        for (s, sweep) in [Sweep::Mesh, Sweep::Order, Sweep::Tolerance]
+    for model in &models {
+        let combinations = Method::ALL
             .into_iter()
-            .enumerate()
-        {
-            let points = bench
+            .map(|method| (Sweep::Mesh, method))
+            .chain(
+                [Sweep::Order, Sweep::Tolerance]
+                    .into_iter()
+                    .flat_map(|sweep| Method::ALL.into_iter().map(move |m| (sweep, m))),
+            );
+        for (sweep, method) in combinations {
+            let rows: Vec<&BenchRow> = bench
                 .rows
                 .iter()
-                .filter(|r| r.model == *model && r.sweep == sweep)
+                .filter(|r| r.model == *model && r.sweep == sweep && r.settings.method == method)
+                .collect();
+            if rows.is_empty() {
+                continue;
+            }
+            let points = rows
+                .iter()
                 .filter_map(|r| Some((r.time_total?, error(r)?, tag(r))))
                 .filter(|(t, e, _)| *t > 0.0 && *e > 0.0)
                 .collect();
             let name = match sweep {
                 Sweep::Mesh => "mesh nx×ny",
-                Sweep::Order => "ANM order N",
+                Sweep::Order => "order N",
                 _ => "series tolerance ε",
             };
+            let name = format!("{}: {name}", method.label());
             series.push(Series {
                 label: if several {
-                    format!("{model}: {name}")
+                    format!("{model}, {name}")
                 } else {
-                    name.to_string()
+                    name
                 },
-                color: COLORS[(3 * m + s) % COLORS.len()],
+                sweep: Some(sweep),
+                color: COLORS[series.len() % COLORS.len()],
                 dashed: false,
                 points,
             });
@@ -106,13 +124,14 @@ fn sweep_series(bench: &Bench, error: fn(&BenchRow) -> Option<f64>) -> Vec<Serie
 /// λ_c errors are round-off by construction.
 fn panels(bench: &Bench) -> Vec<Panel> {
     let mut critical = sweep_series(bench, |r| r.errors.error_critical_load);
-    critical.retain(|s| s.label.ends_with("mesh nx×ny"));
+    critical.retain(|s| s.sweep == Some(Sweep::Mesh));
     if bench.closed_form_critical_load.is_some() {
         // The reference row comes first in the table: sort coarse (fast) to fine (slow).
         let mut points: Vec<(f64, f64, String)> = bench
             .rows
             .iter()
             .filter(|r| matches!(r.sweep, Sweep::Mesh | Sweep::Reference))
+            .filter(|r| r.settings.method == Method::AnmPade)
             .filter_map(|r| {
                 Some((
                     r.time_total?,
@@ -125,6 +144,7 @@ fn panels(bench: &Bench) -> Vec<Panel> {
         points.sort_by(|a, b| a.0.total_cmp(&b.0));
         critical.push(Series {
             label: "mesh, against eq. (42)".into(),
+            sweep: None,
             color: CLOSED_FORM_COLOR,
             dashed: true,
             points,
