@@ -51,6 +51,10 @@ pub const LOAD_RATIO: f64 = 1.1;
 /// [`AMPLITUDE_LEVEL`] and past $`\lambda = 1.1\lambda_c`$ on the paper's example 1.
 pub const TARGET_AMPLITUDE: f64 = 2.0;
 
+/// Step budget of a Riks point at least (`solver.max_steps` if larger): the arc length is at
+/// most 1 % of λ_c, so Riks needs 130–200 steps to a/h = 2 on 8×4 … 32×16 and more beyond.
+pub const RIKS_MAX_STEPS: usize = 3000;
+
 /// The columns of `bench.csv`, in order.
 pub const CSV_COLUMNS: [&str; 23] = [
     "model",
@@ -564,6 +568,9 @@ fn point_scene(
         Method::Riks => PathMethod::Riks,
         Method::Anm | Method::AnmPade => PathMethod::Anm,
     };
+    if settings.method == Method::Riks {
+        point.solver.max_steps = point.solver.max_steps.max(RIKS_MAX_STEPS);
+    }
     point.solver.max_amplitude_over_thickness = TARGET_AMPLITUDE;
     point.output.plots = false;
     point.output.vtu_loads.clear();

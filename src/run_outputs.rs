@@ -13,7 +13,7 @@ use crate::output::{
 };
 use crate::physics::{Layout, Snapshot};
 use crate::results::{RunOutcome, RunReport, Snap, Trace};
-use crate::scene::{LoadKind, Scene};
+use crate::scene::{LoadKind, PathMethod, Scene};
 use crate::threshold::{Threshold, closed_form_threshold, load_unit, threshold_json};
 use serde_json::json;
 use std::path::{Path, PathBuf};
@@ -91,12 +91,19 @@ pub fn write_run(
     let csv = dir.join("path.csv");
     write_path_csv(&csv, &trace.points).map_err(io_error(&csv))?;
     files.push(csv);
-    files.extend(write_fields(context, trace, &dir)?);
-    let figures = if context.scene.output.plots {
-        write_plots(context, trace, &dir)?
-    } else {
-        Vec::new()
-    };
+    // The VTU files and the plots are independent: written side by side.
+    let (fields, figures) = rayon::join(
+        || write_fields(context, trace, &dir),
+        || {
+            if context.scene.output.plots {
+                write_plots(context, trace, &dir)
+            } else {
+                Ok(Vec::new())
+            }
+        },
+    );
+    files.extend(fields?);
+    let figures = figures?;
     files.extend(figures.iter().flat_map(|(f, _)| f.clone()));
     let scene_path = dir.join("scene.toml");
     crate::output::write_bytes_atomically(&scene_path, context.scene.to_toml_string().as_bytes())
@@ -284,6 +291,22 @@ fn write_plots(
     trace: &Trace,
     dir: &Path,
 ) -> Result<Vec<(Vec<PathBuf>, String)>, Error> {
+    // The wrinkle map (the dearest: a fine grid of the deflection) is drawn beside the others.
+    let (curves, map) = rayon::join(
+        || write_curve_plots(context, trace, dir),
+        || write_wrinkle_map(context, trace, dir),
+    );
+    let mut out = curves?;
+    out.push(map?);
+    Ok(out)
+}
+
+/// `response`, `profiles_x`, `profiles_y` and the local wavenumber plot, with captions.
+fn write_curve_plots(
+    context: &RunContext,
+    trace: &Trace,
+    dir: &Path,
+) -> Result<Vec<(Vec<PathBuf>, String)>, Error> {
     let mut out = Vec::new();
     let stem = dir.join("response");
     let plot = plot_response(
@@ -298,6 +321,15 @@ fn write_plots(
     ));
     out.extend(write_profiles(context, trace, dir)?);
     out.extend(write_local_wavenumber(context, trace, dir)?);
+    Ok(out)
+}
+
+/// `wrinkles`: the physical deflection at the last point, with its caption.
+fn write_wrinkle_map(
+    context: &RunContext,
+    trace: &Trace,
+    dir: &Path,
+) -> Result<(Vec<PathBuf>, String), Error> {
     let bounds = context.mesh.bounds();
     let snapshot = context.snapshot(&trace.last.values);
     let (mx, my) = (
@@ -319,11 +351,10 @@ fn write_plots(
         &crate::output::WrinkleMap::new(field, 1e-2 * h, "10⁻² h"),
     )
     .map_err(io_error(&stem))?;
-    out.push((
+    Ok((
         plot.files,
         "Physical deflection at the last point".to_string(),
-    ));
-    Ok(out)
+    ))
 }
 
 /// The load–amplitude response with the closed form and the markers.
@@ -620,7 +651,10 @@ fn run_summary(context: &RunContext, trace: &Trace, outcome: &RunOutcome) -> Run
     let stats = &trace.result.statistics;
     RunSummary {
         model: context.spec.name.to_string(),
-        method: context.scene.solver.method.as_str().to_uppercase(),
+        method: match (context.scene.solver.method, context.scene.solver.pade) {
+            (PathMethod::Anm, true) => "ANM + Padé".to_string(),
+            (method, _) => method.as_str().to_uppercase(),
+        },
         dofs: context.dofs,
         wavenumber: context.threshold.wavenumber,
         load: context.load_quantity(),
