@@ -268,8 +268,10 @@ impl Builder<'_> {
                 _ => self.push(Instruction::SubtractFromReal(r(self, b), a)),
             },
             Operation::Multiply(a, b) => match (series(self, a), series(self, b)) {
-                (true, true) if a == b => self.push(Instruction::Square(r(self, a))),
-                (true, true) => self.push(Instruction::Multiply(r(self, a), r(self, b))),
+                (true, true) => {
+                    let (a, b) = (r(self, a), r(self, b));
+                    self.multiply(a, b)
+                }
                 (true, false) => self.push(Instruction::Scale(r(self, a), b)),
                 _ => self.push(Instruction::Scale(r(self, b), a)),
             },
@@ -304,12 +306,49 @@ impl Builder<'_> {
             return base;
         }
         let half = self.positive_power(base, n / 2);
-        let squared = self.push(Instruction::Square(half));
+        let squared = self.multiply(half, half);
         if n % 2 == 1 {
-            self.push(Instruction::Multiply(squared, base))
+            self.multiply(squared, base)
         } else {
             squared
         }
+    }
+
+    /// `register` without its constant scalings: the innermost register and the scalings
+    /// (`Scale`, `DivideByReal`, `Negate`) that give `register` from it, innermost first.
+    fn peel(&self, mut register: usize) -> (usize, Vec<Instruction>) {
+        let mut scalings = Vec::new();
+        while let scaling @ (Instruction::Scale(inner, _)
+        | Instruction::DivideByReal(inner, _)
+        | Instruction::Negate(inner)) = self.instructions[register]
+        {
+            scalings.push(scaling);
+            register = inner;
+        }
+        scalings.reverse();
+        (register, scalings)
+    }
+
+    /// $`a\,b`$ of two series registers, with constant scalings taken out of the product:
+    /// $`(c\,x)(d\,y) = c\,d\,(x\,y)`$. The recurrence then reads the histories of $`x`$ and
+    /// $`y`$, so a scaled copy of a register (`2 w_x` beside `w_x`, common after
+    /// differentiation) needs no tape slot of its own.
+    fn multiply(&mut self, a: usize, b: usize) -> usize {
+        let (a, a_scalings) = self.peel(a);
+        let (b, b_scalings) = self.peel(b);
+        let mut product = if a == b {
+            self.push(Instruction::Square(a))
+        } else {
+            self.push(Instruction::Multiply(a, b))
+        };
+        for scaling in a_scalings.into_iter().chain(b_scalings) {
+            product = self.push(match scaling {
+                Instruction::Scale(_, c) => Instruction::Scale(product, c),
+                Instruction::DivideByReal(_, c) => Instruction::DivideByReal(product, c),
+                _ => Instruction::Negate(product),
+            });
+        }
+        product
     }
 }
 

@@ -493,12 +493,22 @@ fn taylor_programs_tape_only_what_recurrences_read() {
     let program = TaylorProgram::new(&membrane.graph, &membrane.residual, &membrane.jet);
     assert!(!program.is_linear());
     // Every operand of a product is on the tape, and nothing else but quotient histories.
+    // No operand is a constant scaling of another register (`2 w_x`, `−w`): the scaling is
+    // applied to the product, and the scaled copy needs no slot (14 slots → 10 here).
+    let scaled = |r: usize| {
+        matches!(
+            program.instructions[r],
+            Instruction::Scale(..) | Instruction::DivideByReal(..) | Instruction::Negate(_)
+        )
+    };
     for instruction in &program.instructions {
         if let Instruction::Multiply(a, b) = *instruction {
             assert!(program.slot_of[a].is_some() && program.slot_of[b].is_some());
+            assert!(!scaled(a) && !scaled(b), "{instruction:?}");
         }
         if let Instruction::Square(a) = *instruction {
             assert!(program.slot_of[a].is_some());
+            assert!(!scaled(a), "{instruction:?}");
         }
     }
     assert!(program.slots > 0 && program.slots < program.instructions.len());
