@@ -221,41 +221,35 @@ impl Plan {
     /// tolerance sweeps of both ANM variants.
     pub fn points(&self) -> Vec<(Sweep, Settings)> {
         let reference = self.reference();
-        let meshes = Method::ALL.into_iter().flat_map(|method| {
-            self.meshes.iter().map(move |&(nx, ny)| {
-                let settings = Settings {
-                    nx,
-                    ny,
-                    method,
-                    ..reference
-                };
-                (Sweep::Mesh, settings)
-            })
+        // Every method × every variant of one setting, method by method.
+        let sweep = |sweep: Sweep, methods: &[Method], variants: Vec<Settings>| {
+            methods
+                .iter()
+                .flat_map(|&method| {
+                    variants
+                        .iter()
+                        .map(move |s| (sweep, Settings { method, ..*s }))
+                })
+                .collect::<Vec<_>>()
+        };
+        let anm: Vec<Method> = Method::ALL.into_iter().filter(|m| m.is_anm()).collect();
+        let meshes = self.meshes.iter().map(|&(nx, ny)| Settings {
+            nx,
+            ny,
+            ..reference
         });
-        let anm = Method::ALL.into_iter().filter(|m| m.is_anm());
-        let orders = anm.clone().flat_map(|method| {
-            self.orders.iter().map(move |&order| {
-                let settings = Settings {
-                    order,
-                    method,
-                    ..reference
-                };
-                (Sweep::Order, settings)
-            })
+        let orders = self
+            .orders
+            .iter()
+            .map(|&order| Settings { order, ..reference });
+        let tolerances = self.tolerances.iter().map(|&series_tolerance| Settings {
+            series_tolerance,
+            ..reference
         });
-        let tolerances = anm.flat_map(|method| {
-            self.tolerances.iter().map(move |&series_tolerance| {
-                let settings = Settings {
-                    series_tolerance,
-                    method,
-                    ..reference
-                };
-                (Sweep::Tolerance, settings)
-            })
-        });
-        meshes
-            .chain(orders)
-            .chain(tolerances)
+        sweep(Sweep::Mesh, &Method::ALL, meshes.collect())
+            .into_iter()
+            .chain(sweep(Sweep::Order, &anm, orders.collect()))
+            .chain(sweep(Sweep::Tolerance, &anm, tolerances.collect()))
             .filter(|(_, settings)| *settings != reference)
             .collect()
     }

@@ -220,22 +220,14 @@ impl Snapshot<'_> {
         let nf = self.layout.field_count;
         let nodes = self.mesh.nodes.len();
         let value = |n: usize, f: usize| self.values[n * nf + f];
-        (0..nodes)
-            .map(|n| match self.layout.kind {
-                DeflectionKind::Plate { deflection } => value(n, deflection).abs(),
-                DeflectionKind::RealEnvelope { envelope } => 2.0 * value(n, envelope).abs(),
-                DeflectionKind::ComplexEnvelope {
-                    real, imaginary, ..
-                } => 2.0 * value(n, real).hypot(value(n, imaginary)),
-            })
-            // NaN propagates (`f64::max` would drop it and report a finite amplitude).
-            .fold(0.0, |largest: f64, value| {
-                if largest.is_nan() || value.is_nan() {
-                    f64::NAN
-                } else {
-                    largest.max(value)
-                }
-            })
+        // NaN propagates: an overflowed state never reports a finite amplitude.
+        wrinkle_runtime::problem::max_or_nan((0..nodes).map(|n| match self.layout.kind {
+            DeflectionKind::Plate { deflection } => value(n, deflection).abs(),
+            DeflectionKind::RealEnvelope { envelope } => 2.0 * value(n, envelope).abs(),
+            DeflectionKind::ComplexEnvelope {
+                real, imaginary, ..
+            } => 2.0 * value(n, real).hypot(value(n, imaginary)),
+        }))
     }
 
     /// Local wrinkle amplitude (mm) at `centre` (see the module documentation); `wavelength`

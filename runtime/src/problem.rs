@@ -230,22 +230,27 @@ impl<M: EnergyModel> Problem<M> {
         } else {
             self.residual_scale(load)
         };
-        // NaN propagates (`f64::max` would drop it): an overflowed state is never "converged".
-        let relative = (0..nf)
-            .map(|f| residual_norm[f].sqrt() / scale[f].sqrt().max(floor))
-            .fold(0.0, |worst: f64, value| {
-                if worst.is_nan() || value.is_nan() {
-                    f64::NAN
-                } else {
-                    worst.max(value)
-                }
-            });
+        // An overflowed state is never "converged": NaN propagates.
+        let relative =
+            max_or_nan((0..nf).map(|f| residual_norm[f].sqrt() / scale[f].sqrt().max(floor)));
         (residual, relative)
     }
 }
 
 /// Relative floor of the per-field residual scales in [`Problem::relative_residual`].
 pub const FIELD_SCALE_FLOOR: f64 = 1e-6;
+
+/// The largest of non-negative `values` (0 when empty), NaN if any is NaN: `f64::max` drops
+/// NaN and would report an overflowed quantity as finite.
+pub fn max_or_nan(values: impl IntoIterator<Item = f64>) -> f64 {
+    values.into_iter().fold(0.0, |largest: f64, value| {
+        if largest.is_nan() || value.is_nan() {
+            f64::NAN
+        } else {
+            largest.max(value)
+        }
+    })
+}
 
 /// Euclidean norm.
 pub fn norm(v: &[f64]) -> f64 {

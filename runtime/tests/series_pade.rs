@@ -55,6 +55,18 @@ fn simple_pole(radius: f64) -> RationalPath {
     }
 }
 
+/// Poles at 0.4 and 1.5 in five components (the load last), plus a linear part.
+fn two_poles() -> RationalPath {
+    RationalPath {
+        origin: vec![0.0, 1.0, 0.0, 0.0, 0.5],
+        poles: vec![
+            (1.5, vec![1.0, 0.0, -1.0, 0.5, 0.2]),
+            (0.4, vec![0.0, 2.0, 1.0, -1.0, 0.1]),
+        ],
+        linear: vec![1.0, 1.0, 0.0, 0.0, 1.0],
+    }
+}
+
 fn combined(evaluation: (Vec<f64>, f64)) -> Vec<f64> {
     let (mut vector, load) = evaluation;
     vector.push(load);
@@ -113,14 +125,7 @@ fn exact_derivative(path: &RationalPath, a: f64) -> Vec<f64> {
 
 #[test]
 fn pade_derivative_is_the_rational_functions_derivative_where_the_series_diverges() {
-    let path = RationalPath {
-        origin: vec![0.0, 1.0, 0.0, 0.0, 0.5],
-        poles: vec![
-            (1.5, vec![1.0, 0.0, -1.0, 0.5, 0.2]),
-            (0.4, vec![0.0, 2.0, 1.0, -1.0, 0.1]),
-        ],
-        linear: vec![1.0, 1.0, 0.0, 0.0, 1.0],
-    };
+    let path = two_poles();
     let series = path.series(14);
     let pade = PadeApproximant::new(&series).unwrap();
     for a in [0.0, 0.1, 0.3, 0.38, 0.6, 1.2] {
@@ -169,14 +174,7 @@ fn pade_step_length_exceeds_the_series_step_length() {
 
 #[test]
 fn two_poles_give_an_exact_approximant_and_the_nearest_pole() {
-    let path = RationalPath {
-        origin: vec![0.0, 1.0, 0.0, 0.0, 0.5],
-        poles: vec![
-            (1.5, vec![1.0, 0.0, -1.0, 0.5, 0.2]),
-            (0.4, vec![0.0, 2.0, 1.0, -1.0, 0.1]),
-        ],
-        linear: vec![1.0, 1.0, 0.0, 0.0, 1.0],
-    };
+    let path = two_poles();
     let series = path.series(14);
     let pade = PadeApproximant::new(&series).unwrap();
     let pole = pade.smallest_positive_pole().unwrap();

@@ -140,18 +140,7 @@ impl PadeApproximant {
     #[must_use]
     pub fn evaluate_derivative(&self, parameter: f64) -> (Vec<f64>, f64) {
         let degree = self.denominator.len() - 1;
-        // partial[j] = D_j(a), slope[j] = D_j'(a), j = 0..degree.
-        let (mut partial, mut slope) = (Vec::with_capacity(degree + 1), Vec::new());
-        let (mut sum, mut derivative, mut power) = (0.0, 0.0, 1.0);
-        for (i, coefficient) in self.denominator.iter().enumerate() {
-            if i > 0 {
-                derivative += i as f64 * coefficient * power;
-                power *= parameter;
-            }
-            sum += coefficient * power;
-            partial.push(sum);
-            slope.push(derivative);
-        }
+        let (partial, slope) = partial_denominators(&self.denominator, parameter);
         let (full, full_slope) = (partial[degree], slope[degree]);
         let mut result = vec![0.0; self.origin.len()];
         for k in 1..=degree {
@@ -314,15 +303,7 @@ impl PadeApproximant {
     /// $`P_M(a)`$ as one combined vector, $`M - 1`$ = degree of `denominator`.
     fn evaluate_combined(&self, denominator: &[f64], parameter: f64) -> Vec<f64> {
         let degree = denominator.len() - 1;
-        // partial[j] = D_j(a), j = 0..degree.
-        let mut partial = Vec::with_capacity(degree + 1);
-        let mut sum = 0.0;
-        let mut power = 1.0;
-        for coefficient in denominator {
-            sum += coefficient * power;
-            partial.push(sum);
-            power *= parameter;
-        }
+        let (partial, _) = partial_denominators(denominator, parameter);
         let full = partial[degree];
         let mut result = self.origin.clone();
         let mut power = 1.0;
@@ -411,6 +392,23 @@ fn denominator_coefficients(projections: &Projections, order: usize) -> Vec<f64>
         coefficients[i] = -sum / alpha(basis, basis);
     }
     coefficients
+}
+
+/// The partial sums $`D_j(a) = \sum_{i \le j} d_i a^i`$ and their derivatives $`D_j'(a)`$,
+/// $`j = 0, \dots`$, of the denominator coefficients `denominator`.
+fn partial_denominators(denominator: &[f64], parameter: f64) -> (Vec<f64>, Vec<f64>) {
+    let (mut partial, mut slope) = (Vec::with_capacity(denominator.len()), Vec::new());
+    let (mut sum, mut derivative, mut power) = (0.0, 0.0, 1.0);
+    for (i, coefficient) in denominator.iter().enumerate() {
+        if i > 0 {
+            derivative += i as f64 * coefficient * power;
+            power *= parameter;
+        }
+        sum += coefficient * power;
+        partial.push(sum);
+        slope.push(derivative);
+    }
+    (partial, slope)
 }
 
 /// $`\sum_i c_i a^i`$ (Horner).

@@ -288,23 +288,46 @@ pub fn compute_series_generic<M: EnergyModel>(
     Ok((series, u_hat))
 }
 
-fn evaluate(series: &PathSeries, pade: Option<&PadeApproximant>, a: f64) -> PathState {
-    let (displacement, load) = match pade {
-        Some(p) => p.evaluate(a),
-        None => series.evaluate(a),
-    };
-    PathState { displacement, load }
+/// What one step evaluates: its truncated series up to the series' own range, and beyond it
+/// the Padé approximant when that allows a finite, longer step.
+struct StepApproximant<'s> {
+    series: &'s PathSeries,
+    /// The plain series' range.
+    plain: f64,
+    /// The Padé approximant and its range, when it extends the step.
+    pade: Option<(PadeApproximant, f64)>,
 }
 
-/// The approximant a step evaluates at `a`: the Padé approximant beyond the plain series'
-/// range `plain` when Padé allowed a longer step, the series otherwise.
-fn approximant_at(
-    pade: Option<&PadeApproximant>,
-    plain: f64,
-    pade_length: Option<f64>,
-    a: f64,
-) -> Option<&PadeApproximant> {
-    pade.filter(|_| pade_length.is_some_and(|l| l > plain) && a > plain)
+impl StepApproximant<'_> {
+    /// The range the step tries first.
+    fn range(&self) -> f64 {
+        self.pade.as_ref().map_or(self.plain, |&(_, range)| range)
+    }
+
+    /// The Padé approximant when it is what the step evaluates at `a`.
+    fn pade_at(&self, a: f64) -> Option<&PadeApproximant> {
+        self.pade
+            .as_ref()
+            .filter(|_| a > self.plain)
+            .map(|(pade, _)| pade)
+    }
+
+    fn evaluate(&self, a: f64) -> PathState {
+        let (displacement, load) = match self.pade_at(a) {
+            Some(pade) => pade.evaluate(a),
+            None => self.series.evaluate(a),
+        };
+        PathState { displacement, load }
+    }
+
+    /// The path tangent at `a`, from the approximant evaluated there: beyond the series' range
+    /// its own derivative is meaningless and can point backwards.
+    fn derivative(&self, a: f64) -> (Vec<f64>, f64) {
+        match self.pade_at(a) {
+            Some(pade) => pade.evaluate_derivative(a),
+            None => self.series.evaluate_derivative(a),
+        }
+    }
 }
 
 /// Traces the path from `start` with the ANM; every accepted point (step ends and the
@@ -434,31 +457,24 @@ impl<M: EnergyModel> AnmRun<'_, M> {
         self.statistics.series_assemblies += series.order() - 1;
         self.statistics.series_seconds += t.elapsed().as_secs_f64();
         let predicted = self.watch_bifurcation(step, &series, &u_hat);
-        let (plain, pade, offered) = self.ranges(&series);
-        let mut pade_length = offered;
-        let mut end = self.accept_end(step, &series, pade.as_ref(), plain, pade_length)?;
-        if approximant_at(pade.as_ref(), plain, pade_length, end.step_length).is_some()
+        let (mut approximant, offered) = self.approximant(&series);
+        let mut end = self.accept_end(step, &approximant)?;
+        if approximant.pade_at(end.step_length).is_some()
             && self.jumped_over_critical_point(step, &end.state)?
         {
             // Padé's longer step crossed a critical point that the plain series stops short of
             // (near a nearly perfect bifurcation the singular part is too small for Padé's
             // criterion): the step is redone with the series' own range.
             self.statistics.rejected_steps += 1;
-            pade_length = None;
-            end = self.accept_end(step, &series, None, plain, None)?;
+            approximant.pade = None;
+            end = self.accept_end(step, &approximant)?;
         }
-        let evaluator = |a: f64| {
-            evaluate(
-                &series,
-                approximant_at(pade.as_ref(), plain, pade_length, a),
-                a,
-            )
-        };
+        let evaluator = |a: f64| approximant.evaluate(a);
         let mut record = AnmStep {
             step,
             load_range: (self.state.load, end.state.load),
             step_length: end.step_length,
-            series_step_length: plain,
+            series_step_length: approximant.plain,
             pade_step_length: offered,
             end_residual: end.residual,
             correction_iterations: end.corrections,
@@ -486,14 +502,8 @@ impl<M: EnergyModel> AnmRun<'_, M> {
         steps_log.push(record);
         self.statistics.steps = step;
         // The next step continues the path tangent at this step's end (not at its start: past a
-        // sharp turn the two can point apart), taken from the approximant that gave the end:
-        // beyond the series' range its derivative is meaningless and can point backwards.
-        self.previous_direction = Some(
-            match approximant_at(pade.as_ref(), plain, pade_length, end.step_length) {
-                Some(p) => p.evaluate_derivative(end.step_length),
-                None => series.evaluate_derivative(end.step_length),
-            },
-        );
+        // sharp turn the two can point apart), taken from the approximant that gave the end.
+        self.previous_direction = Some(approximant.derivative(end.step_length));
         self.previous_start = Some((std::mem::replace(&mut self.state, end.state), u_hat));
         let event = PathEvent {
             step,
@@ -678,18 +688,25 @@ impl<M: EnergyModel> AnmRun<'_, M> {
         }
     }
 
-    /// The plain series range, the Padé approximant (when enabled) and its range.
-    fn ranges(&self, series: &PathSeries) -> (f64, Option<PadeApproximant>, Option<f64>) {
+    /// What the step evaluates, and the range Padé offered (when enabled).
+    fn approximant<'s>(&self, series: &'s PathSeries) -> (StepApproximant<'s>, Option<f64>) {
         let plain = series_step_length(series, self.options.series_tolerance);
-        let pade = if self.options.pade {
-            PadeApproximant::new(series).ok()
-        } else {
-            None
+        let pade = self
+            .options
+            .pade
+            .then(|| PadeApproximant::new(series).ok())
+            .flatten()
+            .map(|p| {
+                let range = p.pade_step_length(self.options.series_tolerance);
+                (p, range)
+            });
+        let offered = pade.as_ref().map(|&(_, range)| range);
+        let approximant = StepApproximant {
+            series,
+            plain,
+            pade: pade.filter(|&(_, range)| range.is_finite() && range > plain),
         };
-        let pade_length = pade
-            .as_ref()
-            .map(|p| p.pade_step_length(self.options.series_tolerance));
-        (plain, pade, pade_length)
+        (approximant, offered)
     }
 
     /// The step's end point: the step length (capped, shortened to hit `max_load`), then the
@@ -697,17 +714,11 @@ impl<M: EnergyModel> AnmRun<'_, M> {
     fn accept_end(
         &mut self,
         step: usize,
-        series: &PathSeries,
-        pade: Option<&PadeApproximant>,
-        plain: f64,
-        pade_length: Option<f64>,
+        approximant: &StepApproximant,
     ) -> Result<AcceptedEnd, SolveError> {
         let options = self.options;
-        let evaluator = |a: f64| evaluate(series, approximant_at(pade, plain, pade_length, a), a);
-        let mut a = match pade_length {
-            Some(l) if l.is_finite() && l > plain => l,
-            _ => plain,
-        };
+        let evaluator = |a: f64| approximant.evaluate(a);
+        let mut a = approximant.range();
         if !a.is_finite() {
             a = if options.max_step_length.is_finite() {
                 options.max_step_length
