@@ -113,8 +113,33 @@ fn main() {
         factor.solve_in_place(&mut x).unwrap();
         x
     });
+    for (name, threshold) in [
+        (
+            "simplicial",
+            wrinkle_runtime::linear::factor::SupernodalThreshold::FORCE_SIMPLICIAL,
+        ),
+        (
+            "supernodal",
+            wrinkle_runtime::linear::factor::SupernodalThreshold::FORCE_SUPERNODAL,
+        ),
+    ] {
+        let mut other =
+            SparseFactorization::analyze_with_threshold(problem.assembler.pattern(), threshold)
+                .unwrap();
+        time(&format!("  factorisation, {name}"), 5, || {
+            other.factorize(&matrix).unwrap()
+        });
+        time(&format!("  one solve, {name}"), 20, || {
+            let mut x = rhs.clone();
+            other.solve_in_place(&mut x).unwrap();
+            x
+        });
+    }
     time("residual with field-balanced scale", 5, || {
         problem.residual_with_relative(&state.displacement, load)
+    });
+    time("Legendre–Hadamard check", 5, || {
+        wrinkle_runtime::solve::ellipticity::legendre_hadamard(&problem, &state.displacement, load)
     });
     let mut tape = problem.assembler.taylor_tape(order);
     println!("  Taylor tape: {:.1} MB", tape.bytes() as f64 / 1e6);

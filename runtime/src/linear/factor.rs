@@ -14,12 +14,13 @@ use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
 use faer::linalg::cholesky::llt::factor::{LltError as DenseLltError, LltRegularization};
 use faer::perm::PermRef;
+use faer::sparse::linalg::LuError;
+pub use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, LdltRef, LltRef, SymbolicCholesky, SymbolicCholeskyRaw,
     SymmetricOrdering, factorize_symbolic_cholesky, supernodal::SupernodalLdltRef,
 };
 use faer::sparse::linalg::lu::{LuSymbolicParams, factorize_symbolic_lu, simplicial};
-use faer::sparse::linalg::{LuError, SupernodalThreshold};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
 

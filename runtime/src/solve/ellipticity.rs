@@ -229,25 +229,46 @@ fn point_hessian<M: EnergyModel>(
     point
 }
 
-/// Smallest relative pivot of $`A(\mathbf n)`$ over the sampled directions at one point:
-/// `(margin, direction angle, slot of the smallest pivot)`.
-fn worst_direction(h: &[f64], m: usize) -> (f64, f64, usize) {
-    let mut worst = (f64::INFINITY, 0.0, 0);
-    for k in 0..DIRECTIONS {
+/// $`(\cos^2\theta, \cos\theta\sin\theta, \sin^2\theta)`$ and $`\theta`$ of the sampled
+/// directions $`\theta_k = k\pi/`$[`DIRECTIONS`].
+fn direction_table() -> [([f64; 3], f64); DIRECTIONS] {
+    std::array::from_fn(|k| {
         let angle = std::f64::consts::PI * k as f64 / DIRECTIONS as f64;
-        let n = [angle.cos(), angle.sin()];
+        let (s, c) = angle.sin_cos();
+        ([c * c, c * s, s * s], angle)
+    })
+}
+
+/// Smallest relative pivot of $`A(\mathbf n)`$ over the sampled directions at one point:
+/// `(margin, direction angle, slot of the smallest pivot)`. With
+/// $`\mathbf n = (\cos\theta, \sin\theta)`$,
+/// $`A_{ij}(\mathbf n) = \cos^2\theta\, H^{xx}_{ij} + \cos\theta\sin\theta\,(H^{xy}_{ij} + H^{yx}_{ij})
+/// + \sin^2\theta\, H^{yy}_{ij}`$: the three $`m\times m`$ blocks are formed once per point.
+fn worst_direction(
+    h: &[f64],
+    m: usize,
+    directions: &[([f64; 3], f64); DIRECTIONS],
+) -> (f64, f64, usize) {
+    type Block = [[f64; MAX_GRADIENT_FIELDS]; MAX_GRADIENT_FIELDS];
+    let mut blocks: [Block; 3] = [[[0.0; MAX_GRADIENT_FIELDS]; MAX_GRADIENT_FIELDS]; 3];
+    let at = |i: usize, a: usize, j: usize, b: usize| h[(2 * i + a) * 2 * m + (2 * j + b)];
+    for i in 0..m {
+        for j in 0..m {
+            blocks[0][i][j] = at(i, 0, j, 0);
+            blocks[1][i][j] = at(i, 0, j, 1) + at(i, 1, j, 0);
+            blocks[2][i][j] = at(i, 1, j, 1);
+        }
+    }
+    let mut worst = (f64::INFINITY, 0.0, 0);
+    for &(weights, angle) in directions {
         // A(n) on the stack, then its LDLᵀ pivots (positive definite ⇔ all pivots > 0).
-        let mut acoustic = [[0.0; MAX_GRADIENT_FIELDS]; MAX_GRADIENT_FIELDS];
+        let mut acoustic: Block = [[0.0; MAX_GRADIENT_FIELDS]; MAX_GRADIENT_FIELDS];
         let mut scale: f64 = 0.0;
         for i in 0..m {
             for j in 0..m {
-                let mut sum = 0.0;
-                for a in 0..2 {
-                    for b in 0..2 {
-                        sum += h[(2 * i + a) * 2 * m + (2 * j + b)] * n[a] * n[b];
-                    }
-                }
-                acoustic[i][j] = sum;
+                acoustic[i][j] = weights[0] * blocks[0][i][j]
+                    + weights[1] * blocks[1][i][j]
+                    + weights[2] * blocks[2][i][j];
             }
             scale = scale.max(acoustic[i][i].abs());
         }
@@ -299,6 +320,7 @@ pub fn legendre_hadamard<M: EnergyModel>(
     if m == 0 && gradient_free.is_empty() {
         return report;
     }
+    let directions = direction_table();
     let mut total_area = 0.0;
     let mut violated_area = 0.0;
     let mut field_violated_area = vec![0.0; gradient_free.len()];
@@ -334,7 +356,8 @@ pub fn legendre_hadamard<M: EnergyModel>(
                     PointCheck {
                         weight: values.weights[q],
                         location: values.points[q],
-                        gradient: (m > 0).then(|| worst_direction(&point.gradient_block, m)),
+                        gradient: (m > 0)
+                            .then(|| worst_direction(&point.gradient_block, m, &directions)),
                         value_stiffness: point.value_stiffness,
                     }
                 })

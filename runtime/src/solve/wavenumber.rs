@@ -31,6 +31,11 @@
 //! wide scan, where $`\lambda_c`$ can fall by more than the margin between neighbours, after a
 //! second try at 0.3 times the last load). The first evaluation is shifted too when the caller has a guess
 //! ([`WavenumberSearchOptions::load_guess`], e.g. the threshold on a coarser mesh).
+//! In the local refinement, where neighbours are a few per cent apart in $`Q`$ and $`\lambda_c`$
+//! differs by far less than a per cent, the shift is first 0.98 times the last load
+//! (`LOCAL_SHIFT`, then the usual fraction): shift-invert maps the wanted load factor to
+//! $`1/(\lambda_c - \sigma)`$, fifty times the next one's instead of a few times, and Lanczos
+//! converges in 8–10 operator applications instead of 16–20 (example 1 at 40 × 20).
 //!
 //! **Accuracy the load can carry.** $`\lambda_c(Q)`$ is flat to second order at its minimum: a
 //! relative error $`\delta`$ in $`Q`$ changes $`\lambda_c`$ by $`O(\delta^2)`$, so $`Q`$ is located to
@@ -297,8 +302,11 @@ impl<M: EnergyModel> Searcher<'_, M> {
         // reference load (each failed try costs one factorisation; a successful one saves most
         // of the eigen-solver's iterations).
         let wide_scan = self.scanning && self.options.load_guess.is_none();
+        let local = [LOCAL_SHIFT, self.options.shift_fraction];
         let fractions: &[f64] = if wide_scan {
             &[self.options.shift_fraction, SCAN_SECOND_SHIFT]
+        } else if !self.scanning && self.options.shift_fraction > 0.0 {
+            &local
         } else {
             &[self.options.shift_fraction]
         };
@@ -445,6 +453,8 @@ pub fn minimise_critical_load<M: EnergyModel>(
 
 /// The second shift tried in a wide scan, as a fraction of the last accepted critical load.
 const SCAN_SECOND_SHIFT: f64 = 0.3;
+/// First shift fraction of the local refinement (module documentation).
+const LOCAL_SHIFT: f64 = 0.98;
 
 /// Scan points evaluated past the lowest value before the scan ends.
 const SCAN_PAST_MINIMUM: usize = 2;
