@@ -51,6 +51,11 @@ pub enum Command {
         /// Output directory (overrides `output.directory`).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
+        /// Reuse the wavenumber of an earlier threshold of the same scene instead of searching
+        /// it again: the JSON of `wrinkle buckle --json` or a run's `summary.json` (checked
+        /// against the scene's geometry, material, model, mesh and load).
+        #[arg(long, value_name = "FILE")]
+        threshold: Option<PathBuf>,
         /// No progress reports on stderr.
         #[arg(long, short)]
         quiet: bool,
@@ -189,14 +194,23 @@ pub fn execute(command: &Command) -> Result<(), Error> {
                 None => Ok(()),
             }
         }
-        Command::Run { scene, out, quiet } => {
+        Command::Run {
+            scene,
+            out,
+            threshold,
+            quiet,
+        } => {
             let mut scene = scene.resolve()?;
+            let prior = threshold
+                .as_deref()
+                .map(|file| crate::threshold::PriorThreshold::read(file, &scene))
+                .transpose()?;
             if let Some(directory) = out {
                 scene.output.directory = directory.display().to_string();
             }
             let directory = PathBuf::from(&scene.output.directory);
             crate::interrupt::install();
-            commands::run(&scene, &directory, *quiet)?;
+            commands::run(&scene, &directory, *quiet, prior.as_ref())?;
             eprintln!("outputs in {}", directory.display());
             Ok(())
         }

@@ -5,7 +5,7 @@
 use crate::Error;
 use crate::run::{RunOutcome, RunReport};
 use crate::scene::Scene;
-use crate::threshold::Threshold;
+use crate::threshold::{PriorThreshold, Threshold};
 use std::path::Path;
 
 /// Linear buckling analysis of a scene (`wrinkle buckle`); progress on standard error unless
@@ -17,8 +17,16 @@ pub fn buckle(scene: &Scene, quiet: bool) -> Result<Threshold, Error> {
 /// Path following of a scene (`wrinkle run`), writing its outputs into `output_directory`.
 /// A run that does not reach what was asked is an `Err` with its exit code (1 failure,
 /// 3 incomplete, 4 validity), but only after every output computed so far was written.
-pub fn run(scene: &Scene, output_directory: &Path, quiet: bool) -> Result<RunReport, Error> {
-    let report = crate::run::run(scene, output_directory, quiet)?;
+///
+/// With `prior` (`--threshold FILE`), the wavenumber search is replaced by one analysis at the
+/// wavenumber of an earlier threshold of the same scene.
+pub fn run(
+    scene: &Scene,
+    output_directory: &Path,
+    quiet: bool,
+    prior: Option<&PriorThreshold>,
+) -> Result<RunReport, Error> {
+    let report = crate::run::run_reusing(scene, output_directory, quiet, prior)?;
     // The summary table goes to stdout whatever the outcome (a closed stdout is not an error).
     {
         use std::io::Write;

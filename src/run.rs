@@ -16,7 +16,9 @@ use crate::physics::{Layout, Snapshot};
 pub use crate::results::{RunOutcome, RunReport, Snap, Trace};
 use crate::scene::{Imperfection, LoadKind, PathMethod, Scene, Wavenumber};
 use crate::setup::{build_problem, configure_model, layout_of, unknown_model};
-use crate::threshold::{Threshold, analyse, closed_form_threshold, find_threshold};
+use crate::threshold::{
+    PriorThreshold, Threshold, analyse, closed_form_threshold, find_threshold_reusing,
+};
 use std::path::Path;
 use std::time::Instant;
 use wrinkle_models::{ModelVisitor, with_model};
@@ -33,10 +35,22 @@ use wrinkle_runtime::solve::riks::{RiksOptions, follow_path_riks};
 /// Path following of a scene, writing its outputs into `output_directory`. Progress goes to
 /// standard error unless `quiet`.
 pub fn run(scene: &Scene, output_directory: &Path, quiet: bool) -> Result<RunReport, Error> {
+    run_reusing(scene, output_directory, quiet, None)
+}
+
+/// [`run`], with the wavenumber search replaced by one analysis at the wavenumber of an earlier
+/// threshold of the same scene when `prior` is given ([`PriorThreshold`], `--threshold FILE`).
+pub fn run_reusing(
+    scene: &Scene,
+    output_directory: &Path,
+    quiet: bool,
+    prior: Option<&PriorThreshold>,
+) -> Result<RunReport, Error> {
     let visitor = RunVisitor {
         scene,
         directory: output_directory,
         quiet,
+        prior,
     };
     with_model(&scene.model.name, visitor).unwrap_or_else(|| Err(unknown_model(scene)))
 }
@@ -45,6 +59,7 @@ struct RunVisitor<'a> {
     scene: &'a Scene,
     directory: &'a Path,
     quiet: bool,
+    prior: Option<&'a PriorThreshold>,
 }
 
 impl ModelVisitor for RunVisitor<'_> {
@@ -61,7 +76,8 @@ impl ModelVisitor for RunVisitor<'_> {
         let layout = layout_of::<M>(scene)?;
         let mut problem = build_problem(scene, model)?;
         let mut factor = analyse(&problem)?;
-        let threshold = find_threshold(scene, &mut problem, &mut factor, self.quiet)?;
+        let threshold =
+            find_threshold_reusing(scene, &mut problem, &mut factor, self.quiet, self.prior)?;
         let imperfection = add_imperfection(scene, &mut problem, &layout, &threshold)?;
         let _phase = crate::interrupt::PathPhase::enter();
         let trace = trace_path(

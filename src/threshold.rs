@@ -31,6 +31,10 @@
 //!   membrane's envelope) that is pointwise unstable over most of the area at
 //!   [`WELL_POSEDNESS_LOAD_RATIO`]$`\,\lambda_c`$ on the fundamental branch.
 
+mod reuse;
+
+pub use reuse::{PriorThreshold, THRESHOLD_SECTIONS};
+
 use crate::Error;
 use crate::output::{ProgressSink, SearchProgress};
 use crate::physics::{Layout, Snapshot, wavelength_along_line};
@@ -138,6 +142,19 @@ pub fn find_threshold<M: EnergyModel>(
     factor: &mut SparseFactorization,
     quiet: bool,
 ) -> Result<Threshold, Error> {
+    find_threshold_reusing(scene, problem, factor, quiet, None)
+}
+
+/// [`find_threshold`], reusing the wavenumber of an earlier threshold of the same scene when
+/// `prior` is given (the search is replaced by one analysis at that wavenumber; see
+/// [`PriorThreshold`]).
+pub fn find_threshold_reusing<M: EnergyModel>(
+    scene: &Scene,
+    problem: &mut Problem<M>,
+    factor: &mut SparseFactorization,
+    quiet: bool,
+    prior: Option<&PriorThreshold>,
+) -> Result<Threshold, Error> {
     let start = std::time::Instant::now();
     let layout = layout_of::<M>(scene)?;
     require_free_primary_dofs(scene, problem, &layout, M::SPEC.fields[layout.primary])?;
@@ -150,9 +167,36 @@ pub fn find_threshold<M: EnergyModel>(
         ));
     }
     let reference_load;
-    let (buckling, ellipticity, q, source, search) = match (scene.model.wavenumber, has_wavenumber)
-    {
-        (Wavenumber::Auto, true)
+    let (buckling, ellipticity, q, source, search) = match (
+        scene.model.wavenumber,
+        has_wavenumber,
+        prior,
+    ) {
+        (Wavenumber::Auto, true, Some(prior)) => {
+            let q = prior.wavenumber;
+            let (buckling, ellipticity, shift) = buckle_near(
+                scene,
+                problem,
+                factor,
+                quiet,
+                &mut notes,
+                q,
+                prior.critical_load,
+            )?;
+            reference_load = shift;
+            notes.push(format!(
+                "Q = {q:.9e} 1/mm is reused from {} (the minimiser found there for this scene): one analysis at that Q instead of the wavenumber search",
+                prior.file
+            ));
+            (
+                buckling,
+                ellipticity,
+                Some(q),
+                "auto (reused)".into(),
+                Vec::new(),
+            )
+        }
+        (Wavenumber::Auto, true, _)
             if has_phase(M::SPEC) || !M::SPEC.needs_gradient(layout.primary) =>
         {
             let (buckling, ellipticity, q, shift) =
@@ -166,7 +210,7 @@ pub fn find_threshold<M: EnergyModel>(
                 Vec::new(),
             )
         }
-        (Wavenumber::Auto, true) => {
+        (Wavenumber::Auto, true, _) => {
             let (search, source) = search_wavenumber(scene, problem, factor, quiet, &mut notes)?;
             reference_load = search.4;
             (search.0, search.1, Some(search.2), source, search.3)
@@ -286,6 +330,38 @@ fn buckle_at_wavenumber<M: EnergyModel>(
     let ellipticity = ellipticity_at_critical_load(problem, &buckling, shift);
     Ok((buckling, ellipticity, shift))
 }
+
+/// [`buckle_at_wavenumber`] with a guess of the critical load: the analysis is first shifted
+/// to [`GUESS_SHIFT`] times the guess (one factorisation and a few Lanczos iterations when the
+/// tangent there is still positive definite, so that no critical load lies below the shift),
+/// and falls back to the unshifted analysis otherwise.
+fn buckle_near<M: EnergyModel>(
+    scene: &Scene,
+    problem: &mut Problem<M>,
+    factor: &mut SparseFactorization,
+    quiet: bool,
+    notes: &mut Vec<String>,
+    q: f64,
+    load_guess: f64,
+) -> Result<(LinearBuckling, EllipticityReport, f64), Error> {
+    set_model_parameter(problem, "wavenumber", q).map_err(|e| Error::Solver(e.to_string()))?;
+    let shift = GUESS_SHIFT * load_guess;
+    let options = LinearBucklingOptions {
+        reference_load: shift,
+        ..LinearBucklingOptions::default()
+    };
+    if let Ok(buckling) = linear_buckling(problem, factor, &options)
+        && factor.negative_pivots() == Some(0)
+    {
+        let ellipticity = ellipticity_at_critical_load(problem, &buckling, shift);
+        return Ok((buckling, ellipticity, shift));
+    }
+    buckle_at_wavenumber(scene, problem, factor, quiet, notes, q)
+}
+
+/// Shift of an analysis with a close guess of its critical load, as a fraction of the guess:
+/// shift-invert then separates the wanted load factor from the next by a factor of about fifty.
+const GUESS_SHIFT: f64 = 0.98;
 
 /// Relative accuracy of $`Q`$ on the coarse mesh of the two-level search.
 const COARSE_RELATIVE_TOLERANCE: f64 = 1e-2;

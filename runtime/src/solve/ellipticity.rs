@@ -249,28 +249,28 @@ fn worst_direction(
     m: usize,
     directions: &[([f64; 3], f64); DIRECTIONS],
 ) -> (f64, f64, usize) {
-    type Block = [[f64; MAX_GRADIENT_FIELDS]; MAX_GRADIENT_FIELDS];
-    let mut blocks: [Block; 3] = [[[0.0; MAX_GRADIENT_FIELDS]; MAX_GRADIENT_FIELDS]; 3];
+    // (H^xx, H^xy + H^yx, H^yy) of each pair of gradient fields.
+    let mut blocks = [[[0.0; 3]; MAX_GRADIENT_FIELDS]; MAX_GRADIENT_FIELDS];
     let at = |i: usize, a: usize, j: usize, b: usize| h[(2 * i + a) * 2 * m + (2 * j + b)];
-    for i in 0..m {
-        for j in 0..m {
-            blocks[0][i][j] = at(i, 0, j, 0);
-            blocks[1][i][j] = at(i, 0, j, 1) + at(i, 1, j, 0);
-            blocks[2][i][j] = at(i, 1, j, 1);
+    for (i, row) in blocks.iter_mut().enumerate().take(m) {
+        for (j, entry) in row.iter_mut().enumerate().take(m) {
+            *entry = [
+                at(i, 0, j, 0),
+                at(i, 0, j, 1) + at(i, 1, j, 0),
+                at(i, 1, j, 1),
+            ];
         }
     }
     let mut worst = (f64::INFINITY, 0.0, 0);
     for &(weights, angle) in directions {
         // A(n) on the stack, then its LDLᵀ pivots (positive definite ⇔ all pivots > 0).
-        let mut acoustic: Block = [[0.0; MAX_GRADIENT_FIELDS]; MAX_GRADIENT_FIELDS];
+        let mut acoustic = [[0.0; MAX_GRADIENT_FIELDS]; MAX_GRADIENT_FIELDS];
         let mut scale: f64 = 0.0;
-        for i in 0..m {
-            for j in 0..m {
-                acoustic[i][j] = weights[0] * blocks[0][i][j]
-                    + weights[1] * blocks[1][i][j]
-                    + weights[2] * blocks[2][i][j];
+        for (i, (row, block_row)) in acoustic.iter_mut().zip(&blocks).enumerate().take(m) {
+            for (value, block) in row.iter_mut().zip(block_row).take(m) {
+                *value = weights[0] * block[0] + weights[1] * block[1] + weights[2] * block[2];
             }
-            scale = scale.max(acoustic[i][i].abs());
+            scale = scale.max(row[i].abs());
         }
         let (pivot, at) = smallest_pivot(&mut acoustic, m);
         let margin = if scale > 0.0 { pivot / scale } else { 0.0 };
