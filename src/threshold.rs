@@ -20,6 +20,9 @@
 //! meaningless away from the reference optimum (measured: a spurious minimum at
 //! $`Q = 0.099`$/mm, $`\lambda_c`$ half the plate's, on example 1).
 //!
+//! **Reuse.** `wrinkle run --threshold FILE` replaces the search by one analysis at the $`Q`$ of
+//! an earlier threshold of the same scene ([`PriorThreshold`], [`find_threshold_reusing`]).
+//!
 //! **Validity checks** (warnings in the summary, exit code 4 unless the scene accepts them):
 //! * scale separation of envelope models: $`\ell \le L_\min /`$ [`MIN_WAVES_PER_DOMAIN`] and
 //!   $`\ell \ge`$ [`MIN_WAVELENGTH_OVER_THICKNESS`]$`\,h`$;

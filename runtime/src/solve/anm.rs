@@ -20,6 +20,14 @@
 //!
 //! Each step is oriented with the path tangent at the end of the previous one.
 //!
+//! **Crossing guard.** The tangent at each step's end is factorised (it is the next step's
+//! tangent, so this costs nothing when the end is kept). When it has more negative pivots than
+//! the start's, the step crossed a critical point: near a nearly perfect bifurcation a step can
+//! run along the fundamental branch past $`\lambda_c`$ onto the unstable branch of the imperfect
+//! problem. Such a step is redone — with the series' own range after a Padé step, with half its
+//! length after a series step, up to `MAX_CROSSING_HALVINGS` times, after which the crossing is
+//! taken as the path's own and located at the next step.
+//!
 //! Bifurcations, without an eigen-solve at every step: the factorisation of each step's tangent
 //! gives its inertia (negative pivots of $`LDL^\top`$; none after $`LL^\top`$). When it changes, a
 //! critical point was crossed in the previous step and is located by linear buckling about that
@@ -330,6 +338,10 @@ impl StepApproximant<'_> {
     }
 }
 
+/// Halvings of a series step whose end crossed a critical point before the crossing is taken
+/// as the path's own (a limit point or a perfect bifurcation, located at the next step).
+const MAX_CROSSING_HALVINGS: usize = 4;
+
 /// Traces the path from `start` with the ANM; every accepted point (step ends and the
 /// `interior_points` inside each step) goes to `observer`. Never panics on a numerical failure:
 /// the result keeps the last accepted point and says why it stopped.
@@ -403,7 +415,7 @@ struct AnmRun<'a, M: EnergyModel> {
     prediction: Option<f64>,
     bifurcation: Option<(f64, usize)>,
     warnings: Vec<String>,
-    /// With Padé: a second tangent and factorisation for the end of a Padé-extended step,
+    /// A second tangent and factorisation for the end of a step,
     /// where its inertia is checked (see [`AnmRun::jumped_over_critical_point`]).
     end_check: Option<(SparseMatrix, SparseFactorization)>,
     /// The tangent at the current start is already assembled and factorised (by the end check
@@ -458,15 +470,28 @@ impl<M: EnergyModel> AnmRun<'_, M> {
         self.statistics.series_seconds += t.elapsed().as_secs_f64();
         let predicted = self.watch_bifurcation(step, &series, &u_hat);
         let (mut approximant, offered) = self.approximant(&series);
+        let series_range = approximant.plain;
         let mut end = self.accept_end(step, &approximant)?;
-        if approximant.pade_at(end.step_length).is_some()
-            && self.jumped_over_critical_point(step, &end.state)?
-        {
-            // Padé's longer step crossed a critical point that the plain series stops short of
-            // (near a nearly perfect bifurcation the singular part is too small for Padé's
-            // criterion): the step is redone with the series' own range.
+        let mut halvings = 0;
+        while self.jumped_over_critical_point(step, &end.state)? {
+            // The end has more negative pivots than the start: the step crossed a critical
+            // point. Near a nearly perfect bifurcation the singular part of the series is too
+            // small for the step-length criteria, and a step can run along the fundamental
+            // branch past λ_c onto the unstable branch of the imperfect problem (the strip of
+            // example 2 with a 1e-5 imperfection ended at λ = 36 instead of 24.6 mm). A Padé
+            // step is redone with the series' own range, a series step with half its length.
+            if approximant.pade_at(end.step_length).is_some() {
+                approximant.pade = None;
+            } else if halvings < MAX_CROSSING_HALVINGS {
+                halvings += 1;
+                approximant.pade = None;
+                approximant.plain = 0.5 * end.step_length;
+            } else {
+                // Still crossing in a small fraction of the step: a critical point of the path
+                // itself (a limit point, or a perfect bifurcation); the next step locates it.
+                break;
+            }
             self.statistics.rejected_steps += 1;
-            approximant.pade = None;
             end = self.accept_end(step, &approximant)?;
         }
         let evaluator = |a: f64| approximant.evaluate(a);
@@ -474,7 +499,7 @@ impl<M: EnergyModel> AnmRun<'_, M> {
             step,
             load_range: (self.state.load, end.state.load),
             step_length: end.step_length,
-            series_step_length: approximant.plain,
+            series_step_length: series_range,
             pade_step_length: offered,
             end_residual: end.residual,
             correction_iterations: end.corrections,
@@ -567,11 +592,11 @@ impl<M: EnergyModel> AnmRun<'_, M> {
         Ok(())
     }
 
-    /// Whether the end `end` of a Padé-extended step has more negative pivots than the step's
-    /// start: the step jumped over a critical point (typically onto the unstable fundamental
-    /// branch past a bifurcation). Otherwise the end's tangent and factorisation become the
-    /// next step's (no extra cost). A failed factorisation at the end (singular: a critical
-    /// point exactly there) counts as a jump. Without inertia (LU) nothing is checked.
+    /// Whether the end `end` of a step has more negative pivots than the step's start: the
+    /// step jumped over a critical point (typically onto the unstable fundamental branch past a
+    /// bifurcation). Otherwise the end's tangent and factorisation become the next step's (no
+    /// extra cost). A failed factorisation at the end (singular: a critical point exactly
+    /// there) counts as a jump. Without inertia (LU) nothing is checked.
     fn jumped_over_critical_point(
         &mut self,
         step: usize,
