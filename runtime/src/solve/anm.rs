@@ -25,8 +25,9 @@
 //! the start's, the step crossed a critical point: near a nearly perfect bifurcation a step can
 //! run along the fundamental branch past $`\lambda_c`$ onto the unstable branch of the imperfect
 //! problem. Such a step is redone — with the series' own range after a Padé step, with half its
-//! length after a series step, up to `MAX_CROSSING_HALVINGS` times, after which the crossing is
-//! taken as the path's own and located at the next step.
+//! length after a series step from a stable start (no negative pivot), up to
+//! `MAX_CROSSING_HALVINGS` times, after which the crossing is taken as the path's own and located
+//! at the next step.
 //!
 //! Bifurcations, without an eigen-solve at every step: the factorisation of each step's tangent
 //! gives its inertia (negative pivots of $`LDL^\top`$; none after $`LL^\top`$). When it changes, a
@@ -482,7 +483,9 @@ impl<M: EnergyModel> AnmRun<'_, M> {
             // step is redone with the series' own range, a series step with half its length.
             if approximant.pade_at(end.step_length).is_some() {
                 approximant.pade = None;
-            } else if halvings < MAX_CROSSING_HALVINGS {
+            } else if halvings < MAX_CROSSING_HALVINGS && self.negative_pivots == Some(0) {
+                // Only a stable start is kept stable: once the path is on an unstable branch
+                // (a crossing taken as its own), further crossings are the branch's.
                 halvings += 1;
                 approximant.pade = None;
                 approximant.plain = 0.5 * end.step_length;
