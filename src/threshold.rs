@@ -52,8 +52,8 @@ use wrinkle_runtime::problem::Problem;
 use wrinkle_runtime::solve::buckling::{LinearBuckling, LinearBucklingOptions, linear_buckling};
 use wrinkle_runtime::solve::ellipticity::EllipticityReport;
 use wrinkle_runtime::solve::wavenumber::{
-    LocalGuess, WavenumberEvaluation, WavenumberSearchOptions, ellipticity_at_critical_load,
-    minimise_critical_load, set_model_parameter,
+    LOCAL_SHIFT, LocalGuess, WavenumberEvaluation, WavenumberSearchOptions,
+    ellipticity_at_critical_load, minimise_critical_load, set_model_parameter,
 };
 
 /// Shortest wavelength an envelope model accepts, in thicknesses.
@@ -177,14 +177,14 @@ pub fn find_threshold_reusing<M: EnergyModel>(
     ) {
         (Wavenumber::Auto, true, Some(prior)) => {
             let q = prior.wavenumber;
-            let (buckling, ellipticity, shift) = buckle_near(
+            let (buckling, ellipticity, shift) = buckle_at_wavenumber(
                 scene,
                 problem,
                 factor,
                 quiet,
                 &mut notes,
                 q,
-                prior.critical_load,
+                Some(prior.critical_load),
             )?;
             reference_load = shift;
             notes.push(format!(
@@ -314,12 +314,16 @@ fn reference_carrier<M: EnergyModel>(
         )
     });
     let (buckling, ellipticity, shift) =
-        buckle_at_wavenumber(scene, problem, factor, quiet, notes, q)?;
+        buckle_at_wavenumber(scene, problem, factor, quiet, notes, q, None)?;
     Ok((buckling, ellipticity, q, shift))
 }
 
 /// Linear buckling of `problem` with its wavenumber set to `q` ([`robust_buckling`]), the
-/// ellipticity at the threshold, and the load the analysis linearised about.
+/// ellipticity at the threshold, and the load the analysis linearised about. With a guess of
+/// the critical load the analysis is first shifted to [`LOCAL_SHIFT`] times the guess (one
+/// factorisation and a few Lanczos iterations when the tangent there is still positive
+/// definite, so that no critical load lies below the shift), and falls back to the unshifted
+/// analysis otherwise.
 fn buckle_at_wavenumber<M: EnergyModel>(
     scene: &Scene,
     problem: &mut Problem<M>,
@@ -327,44 +331,26 @@ fn buckle_at_wavenumber<M: EnergyModel>(
     quiet: bool,
     notes: &mut Vec<String>,
     q: f64,
+    load_guess: Option<f64>,
 ) -> Result<(LinearBuckling, EllipticityReport, f64), Error> {
     set_model_parameter(problem, "wavenumber", q).map_err(|e| Error::Solver(e.to_string()))?;
+    if let Some(guess) = load_guess {
+        let shift = LOCAL_SHIFT * guess;
+        let options = LinearBucklingOptions {
+            reference_load: shift,
+            ..LinearBucklingOptions::default()
+        };
+        if let Ok(buckling) = linear_buckling(problem, factor, &options)
+            && factor.negative_pivots() == Some(0)
+        {
+            let ellipticity = ellipticity_at_critical_load(problem, &buckling, shift);
+            return Ok((buckling, ellipticity, shift));
+        }
+    }
     let (buckling, shift) = robust_buckling(scene, problem, factor, quiet, notes)?;
     let ellipticity = ellipticity_at_critical_load(problem, &buckling, shift);
     Ok((buckling, ellipticity, shift))
 }
-
-/// [`buckle_at_wavenumber`] with a guess of the critical load: the analysis is first shifted
-/// to [`GUESS_SHIFT`] times the guess (one factorisation and a few Lanczos iterations when the
-/// tangent there is still positive definite, so that no critical load lies below the shift),
-/// and falls back to the unshifted analysis otherwise.
-fn buckle_near<M: EnergyModel>(
-    scene: &Scene,
-    problem: &mut Problem<M>,
-    factor: &mut SparseFactorization,
-    quiet: bool,
-    notes: &mut Vec<String>,
-    q: f64,
-    load_guess: f64,
-) -> Result<(LinearBuckling, EllipticityReport, f64), Error> {
-    set_model_parameter(problem, "wavenumber", q).map_err(|e| Error::Solver(e.to_string()))?;
-    let shift = GUESS_SHIFT * load_guess;
-    let options = LinearBucklingOptions {
-        reference_load: shift,
-        ..LinearBucklingOptions::default()
-    };
-    if let Ok(buckling) = linear_buckling(problem, factor, &options)
-        && factor.negative_pivots() == Some(0)
-    {
-        let ellipticity = ellipticity_at_critical_load(problem, &buckling, shift);
-        return Ok((buckling, ellipticity, shift));
-    }
-    buckle_at_wavenumber(scene, problem, factor, quiet, notes, q)
-}
-
-/// Shift of an analysis with a close guess of its critical load, as a fraction of the guess:
-/// shift-invert then separates the wanted load factor from the next by a factor of about fifty.
-const GUESS_SHIFT: f64 = 0.98;
 
 /// Relative accuracy of $`Q`$ on the coarse mesh of the two-level search.
 const COARSE_RELATIVE_TOLERANCE: f64 = 1e-2;
@@ -480,7 +466,7 @@ fn search_wavenumber<M: EnergyModel>(
         M::SPEC.name, range.0
     ));
     let (buckling, ellipticity, shift) =
-        buckle_at_wavenumber(scene, problem, factor, quiet, notes, q)?;
+        buckle_at_wavenumber(scene, problem, factor, quiet, notes, q, None)?;
     let outcome = (buckling, ellipticity, q, search.evaluations, shift);
     Ok((outcome, "auto (reference-envelope)".into()))
 }

@@ -453,8 +453,9 @@ pub fn minimise_critical_load<M: EnergyModel>(
 
 /// The second shift tried in a wide scan, as a fraction of the last accepted critical load.
 const SCAN_SECOND_SHIFT: f64 = 0.3;
-/// First shift fraction of the local refinement (module documentation).
-const LOCAL_SHIFT: f64 = 0.98;
+/// First shift fraction of the local refinement (module documentation), and of any analysis
+/// with a close guess of its critical load.
+pub const LOCAL_SHIFT: f64 = 0.98;
 
 /// Scan points evaluated past the lowest value before the scan ends.
 const SCAN_PAST_MINIMUM: usize = 2;
