@@ -56,7 +56,7 @@ pub const TARGET_AMPLITUDE: f64 = 2.0;
 pub const RIKS_MAX_STEPS: usize = 3000;
 
 /// The columns of `bench.csv`, in order.
-pub const CSV_COLUMNS: [&str; 23] = [
+pub const CSV_COLUMNS: [&str; 33] = [
     "model",
     "sweep",
     "method",
@@ -73,6 +73,16 @@ pub const CSV_COLUMNS: [&str; 23] = [
     "time_threshold",
     "time_path",
     "time_total",
+    "time_assembly",
+    "time_factorization",
+    "time_series",
+    "time_series_solves",
+    "time_residual_checks",
+    "time_bifurcation",
+    "time_recording",
+    "peak_memory_mb",
+    "tape_mb",
+    "factor_nonzeros",
     "critical_load",
     "error_critical_load",
     "error_critical_load_closed_form",
@@ -288,12 +298,42 @@ pub struct BenchRow {
     pub time_path: Option<f64>,
     /// Wall time of the whole run (without writing files), s.
     pub time_total: Option<f64>,
+    /// Where the path's time went, and the memory it took.
+    #[serde(flatten)]
+    pub cost: CostSplit,
     /// What the point measured.
     #[serde(flatten)]
     pub measured: Measurement,
     /// Relative errors against the reference.
     #[serde(flatten)]
     pub errors: Errors,
+}
+
+/// The path's time by part (seconds, summed over the path; `timings` of `summary.json`) and
+/// the run's memory. The parts overlap nothing but do not cover everything: the rest of
+/// `time_path` is Padé approximants, step-length and crossing bookkeeping.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct CostSplit {
+    /// Tangent assemblies.
+    pub time_assembly: Option<f64>,
+    /// Numeric factorisations.
+    pub time_factorization: Option<f64>,
+    /// ANM series: Taylor-mode right-hand sides and their solves (0 for Riks).
+    pub time_series: Option<f64>,
+    /// Of `time_series`, the forward/backward solves.
+    pub time_series_solves: Option<f64>,
+    /// `f64` residual evaluations: checks of step ends and interior points, corrector iterations.
+    pub time_residual_checks: Option<f64>,
+    /// Bifurcation prediction and location (eigen-solves).
+    pub time_bifurcation: Option<f64>,
+    /// Recording accepted points, with the Legendre–Hadamard check of each step end.
+    pub time_recording: Option<f64>,
+    /// Peak resident memory of the run, MB ($`10^6`$ bytes; Linux only).
+    pub peak_memory_mb: Option<f64>,
+    /// The ANM's Taylor tape, MB (empty for Riks).
+    pub tape_mb: Option<f64>,
+    /// Entries of the tangent's factor (fill-in included).
+    pub factor_nonzeros: Option<usize>,
 }
 
 /// [`Settings`] as serialised into a row.
@@ -624,6 +664,7 @@ fn run_point(
         time_threshold: None,
         time_path: None,
         time_total: None,
+        cost: CostSplit::default(),
         measured: Measurement::default(),
         errors: Errors::default(),
     };
@@ -654,6 +695,19 @@ fn fill_row(row: &mut BenchRow, summary: &serde_json::Value, outcome: &RunOutcom
     row.time_threshold = seconds("threshold");
     row.time_path = seconds("path");
     row.time_total = seconds("total");
+    let megabytes = |key: &str| summary["memory"][key].as_f64().map(|b| b / 1e6);
+    row.cost = CostSplit {
+        time_assembly: seconds("assembly"),
+        time_factorization: seconds("factorization"),
+        time_series: seconds("series"),
+        time_series_solves: seconds("series_solves"),
+        time_residual_checks: seconds("residual_checks"),
+        time_bifurcation: seconds("bifurcation_prediction"),
+        time_recording: seconds("recording"),
+        peak_memory_mb: megabytes("peak_resident_bytes"),
+        tape_mb: megabytes("taylor_tape_bytes"),
+        factor_nonzeros: count(&summary["memory"]["factor_nonzeros"]),
+    };
     let (name, reason, usable) = match outcome {
         RunOutcome::Reached => ("reached", None, true),
         RunOutcome::Invalid(r) => ("invalid", Some(r.clone()), true),
@@ -705,6 +759,16 @@ pub fn bench_csv(bench: &Bench) -> String {
             cell(row.time_threshold),
             cell(row.time_path),
             cell(row.time_total),
+            cell(row.cost.time_assembly),
+            cell(row.cost.time_factorization),
+            cell(row.cost.time_series),
+            cell(row.cost.time_series_solves),
+            cell(row.cost.time_residual_checks),
+            cell(row.cost.time_bifurcation),
+            cell(row.cost.time_recording),
+            cell(row.cost.peak_memory_mb),
+            cell(row.cost.tape_mb),
+            count_cell(row.cost.factor_nonzeros),
             cell(m.critical_load),
             cell(e.error_critical_load),
             cell(e.error_critical_load_closed_form),
@@ -724,6 +788,8 @@ fn write_bench(scene: &Scene, bench: &Bench, directory: &Path) -> Result<(), Err
     std::fs::create_dir_all(directory).map_err(io_error(directory))?;
     let path = directory.join("bench.csv");
     write_bytes_atomically(&path, bench_csv(bench).as_bytes()).map_err(io_error(&path))?;
+    let path = directory.join("bench.md");
+    write_bytes_atomically(&path, bench_markdown(bench).as_bytes()).map_err(io_error(&path))?;
     let references: Vec<_> = bench
         .rows
         .iter()
@@ -749,7 +815,7 @@ fn write_bench(scene: &Scene, bench: &Bench, directory: &Path) -> Result<(), Err
         "closed_form_critical_load": bench.closed_form_critical_load,
         "wavenumber_fixed_in": ["order", "tolerance"],
         "references": references,
-        "columns": CSV_COLUMNS,
+        "columns": CSV_COLUMNS.as_slice(),
         "rows": bench.rows,
     });
     let path = directory.join("bench.json");
@@ -757,6 +823,91 @@ fn write_bench(scene: &Scene, bench: &Bench, directory: &Path) -> Result<(), Err
     let stem = directory.join("bench");
     plot::plot_bench(&stem, bench).map_err(io_error(&stem))?;
     Ok(())
+}
+
+/// Milliseconds per accepted step of a path total, `–` when unknown.
+fn per_step(total: Option<f64>, steps: Option<usize>) -> String {
+    match (total, steps) {
+        (Some(t), Some(n)) if n > 0 => format!("{:.1}", 1e3 * t / n as f64),
+        _ => "–".into(),
+    }
+}
+
+/// One step's time over one factorisation's:
+/// $`(t_\text{path}/n_\text{steps}) / (t_\text{fact}/n_\text{fact})`$ (the ANM's promise is a
+/// step that costs little more than its factorisation).
+pub fn step_over_factorization(row: &BenchRow) -> Option<f64> {
+    let (path, steps) = (row.time_path?, row.steps?);
+    let (factorization, count) = (row.cost.time_factorization?, row.factorizations?);
+    (steps > 0 && count > 0 && factorization > 0.0)
+        .then(|| (path / steps as f64) / (factorization / count as f64))
+        .filter(|r| r.is_finite())
+}
+
+/// `bench.md`: the rows as a markdown table with the time of one step split by part
+/// (milliseconds per accepted step) and the step-to-factorisation ratio, then the references.
+pub fn bench_markdown(bench: &Bench) -> String {
+    let mut text = String::from(
+        "| model | sweep | method | mesh | dofs | N | ε | steps | fact. | t_total (s) | t_path (s) \
+         | per step (ms): assembly | factorisation | series | of which solves | residual checks \
+         | bifurcation | recording | step / factorisation | peak memory (MB) | tape (MB) \
+         | err λ_c | err λ(a/h=1) | err a/h(1.1 λ_c) | outcome |\n",
+    );
+    text.push_str(&format!("|{}\n", "---|".repeat(25)));
+    let time = |t: Option<f64>| t.map_or("–".to_string(), |t| format!("{t:.2}"));
+    let error = |e: Option<f64>| e.map_or("–".to_string(), |e| format!("{e:.1e}"));
+    let megabytes = |m: Option<f64>| m.map_or("–".to_string(), |m| format!("{m:.1}"));
+    for row in &bench.rows {
+        let c = &row.cost;
+        let steps = row.steps;
+        let cells = [
+            row.model.clone(),
+            row.sweep.as_str().to_string(),
+            row.settings.method.label().to_string(),
+            format!("{}×{}", row.settings.nx, row.settings.ny),
+            row.dofs.map_or("–".into(), |d| d.to_string()),
+            row.settings.order.to_string(),
+            format!("{:.0e}", row.settings.series_tolerance),
+            steps.map_or("–".into(), |s| s.to_string()),
+            row.factorizations.map_or("–".into(), |s| s.to_string()),
+            time(row.time_total),
+            time(row.time_path),
+            per_step(c.time_assembly, steps),
+            per_step(c.time_factorization, steps),
+            per_step(c.time_series, steps),
+            per_step(c.time_series_solves, steps),
+            per_step(c.time_residual_checks, steps),
+            per_step(c.time_bifurcation, steps),
+            per_step(c.time_recording, steps),
+            step_over_factorization(row).map_or("–".into(), |r| format!("{r:.1}")),
+            megabytes(c.peak_memory_mb),
+            megabytes(c.tape_mb),
+            error(row.errors.error_critical_load),
+            error(row.errors.error_load_at_amplitude_1),
+            error(row.errors.error_amplitude_at_1_1),
+            row.outcome.clone(),
+        ];
+        text.push_str(&format!("| {} |\n", cells.join(" | ")));
+    }
+    text.push('\n');
+    for row in bench.rows.iter().filter(|r| r.sweep == Sweep::Reference) {
+        let m = &row.measured;
+        let value = |v: Option<f64>| v.map_or("–".to_string(), |v| format!("{v:.8e}"));
+        text.push_str(&format!(
+            "Reference {}: {}, {}×{}, N = {}, ε = {:.0e}: λ_c = {}, λ(a/h = 1) = {}, a/h(1.1 λ_c) = {} ({}).\n",
+            row.model,
+            row.settings.method.label(),
+            row.settings.nx,
+            row.settings.ny,
+            row.settings.order,
+            row.settings.series_tolerance,
+            value(m.critical_load),
+            value(m.load_at_amplitude_1),
+            value(m.amplitude_at_1_1),
+            bench.load_unit,
+        ));
+    }
+    text
 }
 
 /// The benchmark as a compact text table for the terminal.

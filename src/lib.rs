@@ -16,6 +16,7 @@ pub mod closed_form;
 pub mod commands;
 pub mod compare;
 pub mod interrupt;
+pub mod memory;
 pub mod output;
 pub mod physics;
 pub mod results;

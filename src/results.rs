@@ -102,4 +102,10 @@ pub struct Trace {
     pub last: Snap,
     /// The user interrupted the path (Ctrl-C) after the last point.
     pub interrupted: bool,
+    /// Seconds in the Legendre–Hadamard checks of the step ends (part of
+    /// `recording_seconds`).
+    pub ellipticity_seconds: f64,
+    /// Seconds in the path's observer: recording every accepted point (amplitudes, profiles,
+    /// requested VTU states, progress) and the ellipticity checks. Part of the path's time.
+    pub recording_seconds: f64,
 }

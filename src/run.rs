@@ -68,6 +68,7 @@ impl ModelVisitor for RunVisitor<'_> {
     fn visit<M: EnergyModel>(self, mut model: M) -> Self::Output {
         let scene = self.scene;
         let begin = Instant::now();
+        crate::memory::reset_peak();
         let q = match scene.model.wavenumber {
             Wavenumber::Fixed(q) => q,
             Wavenumber::Auto => 1.0,
@@ -97,6 +98,7 @@ impl ModelVisitor for RunVisitor<'_> {
             imperfection,
             dofs: problem.free_count(),
             seconds: begin.elapsed().as_secs_f64(),
+            peak_memory: crate::memory::peak_resident_bytes(),
         };
         crate::run_outputs::write_run(&context, &trace, self.directory)
     }
@@ -204,6 +206,14 @@ impl<M: EnergyModel> PathRecorder<'_, M> {
     }
 
     fn observe(&mut self, event: &PathEvent) -> PathControl {
+        let clock = Instant::now();
+        let control = self.record(event);
+        self.trace.recording_seconds += clock.elapsed().as_secs_f64();
+        control
+    }
+
+    /// [`Self::observe`] without its timing.
+    fn record(&mut self, event: &PathEvent) -> PathControl {
         let state = event.state;
         let h = self.scene.material.thickness;
         let values = self.problem.dofs().expand(&state.displacement, state.load);
@@ -216,7 +226,9 @@ impl<M: EnergyModel> PathRecorder<'_, M> {
         let elliptic = if event.interior {
             true
         } else {
+            let clock = Instant::now();
             let report = legendre_hadamard(self.problem, &state.displacement, state.load);
+            self.trace.ellipticity_seconds += clock.elapsed().as_secs_f64();
             let well_posed = report.well_posed();
             if !well_posed && self.trace.loss_of_ellipticity.is_none() {
                 self.trace.loss_of_ellipticity = Some((state.load, report));
@@ -392,6 +404,8 @@ impl<'a, M: EnergyModel> PathRecorder<'a, M> {
                 requested: Vec::new(),
                 last: Snap::default(),
                 interrupted: false,
+                ellipticity_seconds: 0.0,
+                recording_seconds: 0.0,
             },
         }
     }

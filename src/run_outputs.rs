@@ -38,6 +38,9 @@ pub struct RunContext<'a> {
     pub dofs: usize,
     /// Seconds before the outputs.
     pub seconds: f64,
+    /// Peak resident memory of the process during the run, in bytes (Linux; see
+    /// [`crate::memory`]).
+    pub peak_memory: Option<u64>,
 }
 
 impl RunContext<'_> {
@@ -733,9 +736,18 @@ fn summary_json(context: &RunContext, trace: &Trace, outcome: &RunOutcome) -> se
             "assembly": stats.assembly_seconds,
             "factorization": stats.factorization_seconds,
             "series": stats.series_seconds,
+            "series_solves": stats.series_solve_seconds,
             "bifurcation_prediction": stats.bifurcation_seconds,
+            "residual_checks": stats.residual_seconds,
+            "ellipticity": trace.ellipticity_seconds,
+            "recording": trace.recording_seconds,
             "path": stats.total_seconds,
             "total": context.seconds,
+        },
+        "memory": {
+            "peak_resident_bytes": context.peak_memory,
+            "taylor_tape_bytes": stats.tape_bytes,
+            "factor_nonzeros": stats.factor_nonzeros,
         },
         "solver_warnings": trace.result.warnings,
         "anm_steps": trace.anm_steps.iter().map(|s| json!({

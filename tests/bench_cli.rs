@@ -6,7 +6,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-const COLUMNS: [&str; 23] = [
+const COLUMNS: [&str; 33] = [
     "model",
     "sweep",
     "method",
@@ -23,6 +23,16 @@ const COLUMNS: [&str; 23] = [
     "time_threshold",
     "time_path",
     "time_total",
+    "time_assembly",
+    "time_factorization",
+    "time_series",
+    "time_series_solves",
+    "time_residual_checks",
+    "time_bifurcation",
+    "time_recording",
+    "peak_memory_mb",
+    "tape_mb",
+    "factor_nonzeros",
     "critical_load",
     "error_critical_load",
     "error_critical_load_closed_form",
@@ -64,6 +74,50 @@ fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
     (header, rows)
 }
 
+/// The path's time split: every part is a non-negative share of the path's time, and they do
+/// not add up to more than it; the series' solves are part of the series; the tape and the
+/// factor are resident, so the peak memory holds them.
+fn check_cost_split(row: &[String], number: &dyn Fn(&str) -> Option<f64>) {
+    let path = number("time_path").unwrap();
+    let parts = [
+        "time_assembly",
+        "time_factorization",
+        "time_series",
+        "time_residual_checks",
+        "time_bifurcation",
+        "time_recording",
+    ];
+    let mut sum = 0.0;
+    for part in parts {
+        let t = number(part).unwrap_or_else(|| panic!("{part} empty in {row:?}"));
+        assert!(t >= 0.0 && t <= path, "{part} = {t} against path {path}");
+        sum += t;
+    }
+    assert!(sum <= path * 1.001, "parts {sum} > path {path}: {row:?}");
+    let (series, solves) = (
+        number("time_series").unwrap(),
+        number("time_series_solves").unwrap(),
+    );
+    assert!((0.0..=series).contains(&solves), "{row:?}");
+    let dofs = number("dofs").unwrap();
+    let factor = number("factor_nonzeros").unwrap();
+    assert!(
+        factor >= dofs,
+        "a factor holds at least the diagonal: {row:?}"
+    );
+    let riks = row.iter().any(|c| c == "riks");
+    let tape = number("tape_mb");
+    assert_eq!(tape.is_none(), riks, "a tape for the ANM only: {row:?}");
+    if cfg!(target_os = "linux") {
+        let peak = number("peak_memory_mb").expect("Linux reports the peak resident set");
+        let held = tape.unwrap_or(0.0) + factor * 8e-6;
+        assert!(
+            peak >= held,
+            "peak {peak} MB below tape + factor {held} MB: {row:?}"
+        );
+    }
+}
+
 #[test]
 fn quick_bench_converges_with_the_mesh_and_measures_against_its_reference() {
     let out = directory("bench");
@@ -76,7 +130,13 @@ fn quick_bench_converges_with_the_mesh_and_measures_against_its_reference() {
     assert_eq!(output.status.code(), Some(0), "stderr:\n{stderr}");
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert!(stdout.contains("reference reference-envelope"), "{stdout}");
-    for file in ["bench.csv", "bench.json", "bench.png", "bench.svg"] {
+    for file in [
+        "bench.csv",
+        "bench.md",
+        "bench.json",
+        "bench.png",
+        "bench.svg",
+    ] {
         assert!(out.join(file).is_file(), "missing {file}");
     }
 
@@ -95,7 +155,15 @@ fn quick_bench_converges_with_the_mesh_and_measures_against_its_reference() {
             let error = number(row, name).unwrap_or_else(|| panic!("{name} empty in {row:?}"));
             assert!(error.is_finite() && error >= 0.0, "{name} = {error}");
         }
+        check_cost_split(row, &|name| number(row, name));
     }
+    let markdown = std::fs::read_to_string(out.join("bench.md")).unwrap();
+    let table_rows = markdown.lines().filter(|l| l.starts_with("| ")).count();
+    assert_eq!(
+        table_rows,
+        rows.len() + 1,
+        "header and one line per row:\n{markdown}"
+    );
 
     let reference: Vec<_> = rows
         .iter()

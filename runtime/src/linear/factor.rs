@@ -26,6 +26,8 @@ use faer::{Conj, MatMut, Par, Side};
 
 pub use super::error::LinearError;
 use super::pattern::{SparseMatrix, SparsityPattern};
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::Instant;
 
 /// Pivots of $`L D L^\top`$ with $`|d_k| \le`$ this times the largest absolute entry of their
 /// column are considered a breakdown of the pivot-free factorisation (fall back to LU).
@@ -74,6 +76,9 @@ pub struct SparseFactorization {
     /// Copy of the matrix values, kept for one step of iterative refinement after
     /// $`L D L^\top`$ solves.
     refinement_values: Vec<f64>,
+    /// Wall time spent in [`SparseFactorization::solve_in_place`] since the analysis, in
+    /// nanoseconds (atomic: solves take `&self`).
+    solve_nanos: AtomicU64,
 }
 
 impl std::fmt::Debug for SparseFactorization {
@@ -117,6 +122,7 @@ impl SparseFactorization {
             kind: None,
             negative_pivots: None,
             refinement_values: Vec::new(),
+            solve_nanos: AtomicU64::new(0),
         };
         if dimension == 0 {
             return Ok(factorization);
@@ -148,6 +154,13 @@ impl SparseFactorization {
     /// Dimension of the analysed pattern.
     pub fn dimension(&self) -> usize {
         self.dimension
+    }
+
+    /// Seconds spent in [`SparseFactorization::solve_in_place`] since the analysis (all
+    /// factorisations of this pattern together): a solver reads it before and after a phase
+    /// to split that phase's time into solves and the rest.
+    pub fn solve_seconds(&self) -> f64 {
+        self.solve_nanos.load(Ordering::Relaxed) as f64 * 1e-9
     }
 
     /// Number of non-zeros of the Cholesky / $`L D L^\top`$ factor (fill-in included).
@@ -357,6 +370,14 @@ impl SparseFactorization {
     /// successful [`SparseFactorization::factorize`]. After $`L D L^\top`$ one step of iterative
     /// refinement is applied.
     pub fn solve_in_place(&self, rhs: &mut [f64]) -> Result<(), LinearError> {
+        let clock = Instant::now();
+        let result = self.solve_untimed(rhs);
+        let nanos = u64::try_from(clock.elapsed().as_nanos()).unwrap_or(u64::MAX);
+        self.solve_nanos.fetch_add(nanos, Ordering::Relaxed);
+        result
+    }
+
+    fn solve_untimed(&self, rhs: &mut [f64]) -> Result<(), LinearError> {
         let n = self.dimension;
         if rhs.len() != n {
             return Err(LinearError::DimensionMismatch {

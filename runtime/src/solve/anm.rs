@@ -374,8 +374,13 @@ pub fn follow_path_anm<M: EnergyModel>(
         end_check: None,
         start_factorized: false,
     };
-    let start_residual = problem.relative_residual(&run.state.displacement, run.state.load);
-    run.statistics.residual_assemblies += 1;
+    run.statistics.tape_bytes = Some(run.tape.bytes());
+    let start_residual = timed_relative_residual(
+        problem,
+        &mut run.statistics,
+        &run.state.displacement,
+        run.state.load,
+    );
     let event = PathEvent {
         step: 0,
         interior: false,
@@ -394,6 +399,20 @@ pub fn follow_path_anm<M: EnergyModel>(
         }
     }
     run.finish(PathStop::MaxSteps)
+}
+
+/// [`Problem::relative_residual`], counted and timed in `statistics`.
+fn timed_relative_residual<M: EnergyModel>(
+    problem: &Problem<M>,
+    statistics: &mut PathStatistics,
+    displacement: &[f64],
+    load: f64,
+) -> f64 {
+    let clock = Instant::now();
+    let residual = problem.relative_residual(displacement, load);
+    statistics.residual_assemblies += 1;
+    statistics.residual_seconds += clock.elapsed().as_secs_f64();
+    residual
 }
 
 /// The state of one ANM path.
@@ -436,6 +455,7 @@ struct AcceptedEnd {
 impl<M: EnergyModel> AnmRun<'_, M> {
     fn finish(mut self, stop: PathStop) -> PathResult {
         self.statistics.total_seconds = self.begin.elapsed().as_secs_f64();
+        self.statistics.factor_nonzeros = Some(self.factor.factor_nnz());
         PathResult {
             last: self.state,
             statistics: self.statistics,
@@ -443,6 +463,11 @@ impl<M: EnergyModel> AnmRun<'_, M> {
             bifurcation: self.bifurcation,
             warnings: self.warnings,
         }
+    }
+
+    /// The field-balanced relative residual at a point, counted and timed.
+    fn relative_residual(&mut self, displacement: &[f64], load: f64) -> f64 {
+        timed_relative_residual(self.problem, &mut self.statistics, displacement, load)
     }
 
     /// One step: factorise, series, bifurcation bookkeeping, step length, end point, dense
@@ -455,6 +480,7 @@ impl<M: EnergyModel> AnmRun<'_, M> {
     ) -> Result<Option<PathStop>, SolveError> {
         self.factorize_tangent(step)?;
         let t = Instant::now();
+        let solves_before = self.factor.solve_seconds();
         let direction = self
             .previous_direction
             .as_ref()
@@ -469,6 +495,7 @@ impl<M: EnergyModel> AnmRun<'_, M> {
         )?;
         self.statistics.series_assemblies += series.order() - 1;
         self.statistics.series_seconds += t.elapsed().as_secs_f64();
+        self.statistics.series_solve_seconds += self.factor.solve_seconds() - solves_before;
         let predicted = self.watch_bifurcation(step, &series, &u_hat);
         let (mut approximant, offered) = self.approximant(&series);
         let series_range = approximant.plain;
@@ -775,10 +802,7 @@ impl<M: EnergyModel> AnmRun<'_, M> {
         }
         for _attempt in 0..=12 {
             let candidate = evaluator(a);
-            let residual = self
-                .problem
-                .relative_residual(&candidate.displacement, candidate.load);
-            self.statistics.residual_assemblies += 1;
+            let residual = self.relative_residual(&candidate.displacement, candidate.load);
             if residual.is_finite() && residual <= options.residual_tolerance {
                 return Ok(AcceptedEnd {
                     state: candidate,
@@ -842,10 +866,7 @@ impl<M: EnergyModel> AnmRun<'_, M> {
         let count = self.options.interior_points;
         for k in 1..=count {
             let inner = evaluator(length * k as f64 / (count + 1) as f64);
-            let residual = self
-                .problem
-                .relative_residual(&inner.displacement, inner.load);
-            self.statistics.residual_assemblies += 1;
+            let residual = self.relative_residual(&inner.displacement, inner.load);
             if residual.is_nan() || residual > self.options.residual_tolerance {
                 continue;
             }

@@ -92,10 +92,21 @@ pub struct PathStatistics {
     pub factorization_seconds: f64,
     /// Seconds computing series terms (ANM) including their solves.
     pub series_seconds: f64,
+    /// Of `series_seconds`, the forward and backward solves with the factorised tangent (one
+    /// per order); the rest is the Taylor-mode right-hand sides.
+    pub series_solve_seconds: f64,
+    /// Seconds evaluating `f64` residuals: the check of every candidate step end and interior
+    /// point (ANM), and the residuals of corrector iterations.
+    pub residual_seconds: f64,
     /// Seconds in bifurcation prediction (eigen-solves).
     pub bifurcation_seconds: f64,
     /// Wall time of the whole path.
     pub total_seconds: f64,
+    /// Bytes of the Taylor tape of the ANM's series (`None` for Riks): what the recurrences
+    /// keep per quadrature point, for every order of a step.
+    pub tape_bytes: Option<usize>,
+    /// Entries of the factor of the tangent (fill-in included), after the last factorisation.
+    pub factor_nonzeros: Option<usize>,
 }
 
 /// The outcome of a path-following run: whatever was computed, and why it ended.

@@ -219,8 +219,11 @@ impl<M: EnergyModel> Linearization<'_, M> {
 
     /// $`(R, \|R\|/\text{scale})`$ at a point.
     fn residual(&mut self, displacement: &[f64], load: f64) -> (Vec<f64>, f64) {
+        let clock = Instant::now();
+        let residual = self.problem.residual_with_relative(displacement, load);
         self.statistics.residual_assemblies += 1;
-        self.problem.residual_with_relative(displacement, load)
+        self.statistics.residual_seconds += clock.elapsed().as_secs_f64();
+        residual
     }
 }
 
@@ -262,6 +265,7 @@ pub fn follow_path_riks<M: EnergyModel>(
     let (stop, last) = trace(&mut linearization, start, options, observer);
     let mut statistics = linearization.statistics;
     statistics.total_seconds = clock.elapsed().as_secs_f64();
+    statistics.factor_nonzeros = Some(linearization.factor.factor_nnz());
     PathResult {
         last,
         statistics,
@@ -701,6 +705,7 @@ pub fn correct_on_arc<M: EnergyModel>(
     statistics.factorizations += work.factorizations;
     statistics.tangent_assemblies += work.tangent_assemblies;
     statistics.residual_assemblies += work.residual_assemblies;
+    statistics.residual_seconds += work.residual_seconds;
     statistics.assembly_seconds += work.assembly_seconds;
     statistics.factorization_seconds += work.factorization_seconds;
     match result {
