@@ -404,6 +404,7 @@ impl RunData {
             steps: s["steps"].as_u64().unwrap_or(0) as usize,
             factorizations: s["statistics"]["factorizations"].as_u64().unwrap_or(0) as usize,
             seconds: s["timings"]["total"].as_f64().unwrap_or(0.0),
+            peak_memory_bytes: s["memory"]["peak_resident_bytes"].as_u64(),
             stop: s["stop"].as_str().unwrap_or("unknown").to_string(),
             reached_target: reached,
         }

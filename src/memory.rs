@@ -4,8 +4,8 @@
 //! `/proc/self/status`) and resets it to the current resident set when `5` is written to
 //! `/proc/self/clear_refs` (Linux ≥ 4.0). A run resets it when it starts and reads it when its
 //! numbers are done, so each run of a benchmark reports its own peak, not the largest so far.
-//! Elsewhere (or when `/proc` is not readable) both functions report nothing and the summary
-//! says `null`.
+//! Elsewhere, or where `/proc` cannot be written or read (some sandboxes), the run reports no
+//! peak (`null` in the summary) rather than one that may belong to earlier work.
 //!
 //! The mark is the whole process's: work running beside the run in the same process (other
 //! tests of one test binary) counts too.

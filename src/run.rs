@@ -68,7 +68,8 @@ impl ModelVisitor for RunVisitor<'_> {
     fn visit<M: EnergyModel>(self, mut model: M) -> Self::Output {
         let scene = self.scene;
         let begin = Instant::now();
-        crate::memory::reset_peak();
+        // Without a reset the mark would be the process's, not this run's (a bench runs many).
+        let peak_tracked = crate::memory::reset_peak();
         let q = match scene.model.wavenumber {
             Wavenumber::Fixed(q) => q,
             Wavenumber::Auto => 1.0,
@@ -98,7 +99,9 @@ impl ModelVisitor for RunVisitor<'_> {
             imperfection,
             dofs: problem.free_count(),
             seconds: begin.elapsed().as_secs_f64(),
-            peak_memory: crate::memory::peak_resident_bytes(),
+            peak_memory: peak_tracked
+                .then(crate::memory::peak_resident_bytes)
+                .flatten(),
         };
         crate::run_outputs::write_run(&context, &trace, self.directory)
     }

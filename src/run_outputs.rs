@@ -671,6 +671,7 @@ fn run_summary(context: &RunContext, trace: &Trace, outcome: &RunOutcome) -> Run
         steps: stats.steps,
         factorizations: stats.factorizations,
         seconds: context.seconds,
+        peak_memory_bytes: context.peak_memory,
         stop: outcome
             .reason()
             .map_or_else(|| trace.result.stop.describe(), str::to_string),

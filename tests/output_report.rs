@@ -32,6 +32,7 @@ fn default_scene_summary() -> RunSummary {
         steps: 20,
         factorizations: 21,
         seconds: 31.2,
+        peak_memory_bytes: Some(79_126_528),
         stop: "stop criterion reached".into(),
         reached_target: true,
     }
@@ -64,6 +65,7 @@ fn summary_rows_carry_units_and_the_closed_form_beside_the_critical_load() {
             .contains("0.2022 mm")
     );
     assert_eq!(row("cost").value, "20 steps, 21 factorisations");
+    assert_eq!(row("peak memory").value, "79.1 MB");
     assert_eq!(row("stop").value, "stop criterion reached");
     let text = default_scene_summary().to_text();
     assert!(text.contains("critical load λ_c"));

@@ -75,6 +75,7 @@
 //!     steps: 8,
 //!     factorizations: 9,
 //!     seconds: 1.5,
+//!     peak_memory_bytes: Some(80_000_000),
 //!     stop: "stop criterion reached".into(),
 //!     reached_target: true,
 //! };

@@ -70,6 +70,8 @@ pub struct RunSummary {
     pub factorizations: usize,
     /// Wall-clock time of the whole run (s).
     pub seconds: f64,
+    /// Peak resident memory of the run (bytes), where the platform reports it.
+    pub peak_memory_bytes: Option<u64>,
     /// Why the path stopped, in words.
     pub stop: String,
     /// Whether the run reached what was asked (the page shows a green or a red banner).
@@ -152,6 +154,13 @@ impl RunSummary {
             ),
             format!("{} s", format_significant(self.seconds, 3)),
         ));
+        if let Some(bytes) = self.peak_memory_bytes {
+            rows.push(SummaryRow::new(
+                "peak memory",
+                format!("{} MB", format_significant(bytes as f64 / 1e6, 3)),
+                "resident, during the run",
+            ));
+        }
         rows.push(SummaryRow::new(
             "stop",
             &self.stop,
