@@ -849,8 +849,9 @@ pub fn step_over_factorization(row: &BenchRow) -> Option<f64> {
 pub fn bench_markdown(bench: &Bench) -> String {
     let mut text = String::from(
         "| model | sweep | method | mesh | dofs | N | ε | steps | fact. | t_total (s) | t_path (s) \
-         | per step (ms): assembly | factorisation | series | of which solves | residual checks \
-         | bifurcation | recording | step / factorisation | peak memory (MB) | tape (MB) \
+         | assembly (ms/step) | factorisation (ms/step) | series (ms/step) \
+         | series solves (ms/step) | residual checks (ms/step) | bifurcation (ms/step) \
+         | recording (ms/step) | step / factorisation | peak memory (MB) | tape (MB) \
          | err λ_c | err λ(a/h=1) | err a/h(1.1 λ_c) | outcome |\n",
     );
     text.push_str(&format!("|{}\n", "---|".repeat(25)));
