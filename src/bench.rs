@@ -844,17 +844,62 @@ pub fn step_over_factorization(row: &BenchRow) -> Option<f64> {
         .filter(|r| r.is_finite())
 }
 
+/// The column headers of `bench.md`.
+const MARKDOWN_COLUMNS: [&str; 25] = [
+    "model",
+    "sweep",
+    "method",
+    "mesh",
+    "dofs",
+    "N",
+    "ε",
+    "steps",
+    "fact.",
+    "t_total (s)",
+    "t_path (s)",
+    "assembly (ms/step)",
+    "factorisation (ms/step)",
+    "series (ms/step)",
+    "series solves (ms/step)",
+    "residual checks (ms/step)",
+    "bifurcation (ms/step)",
+    "recording (ms/step)",
+    "step / factorisation",
+    "peak memory (MB)",
+    "tape (MB)",
+    "err λ_c",
+    "err λ(a/h=1)",
+    "err a/h(1.1 λ_c)",
+    "outcome",
+];
+
+/// A reference row's settings and values, for the terminal and `bench.md`; `missing` stands
+/// for a value the run did not give.
+fn reference_line(row: &BenchRow, missing: &str) -> String {
+    let m = &row.measured;
+    let value = |v: Option<f64>| v.map_or(missing.to_string(), |v| format!("{v:.8e}"));
+    format!(
+        "{}: {}, {}×{}, N = {}, ε = {:.0e}: λ_c = {}, λ(a/h=1) = {}, a/h(1.1 λ_c) = {}",
+        row.model,
+        row.settings.method.label(),
+        row.settings.nx,
+        row.settings.ny,
+        row.settings.order,
+        row.settings.series_tolerance,
+        value(m.critical_load),
+        value(m.load_at_amplitude_1),
+        value(m.amplitude_at_1_1),
+    )
+}
+
 /// `bench.md`: the rows as a markdown table with the time of one step split by part
 /// (milliseconds per accepted step) and the step-to-factorisation ratio, then the references.
 pub fn bench_markdown(bench: &Bench) -> String {
-    let mut text = String::from(
-        "| model | sweep | method | mesh | dofs | N | ε | steps | fact. | t_total (s) | t_path (s) \
-         | assembly (ms/step) | factorisation (ms/step) | series (ms/step) \
-         | series solves (ms/step) | residual checks (ms/step) | bifurcation (ms/step) \
-         | recording (ms/step) | step / factorisation | peak memory (MB) | tape (MB) \
-         | err λ_c | err λ(a/h=1) | err a/h(1.1 λ_c) | outcome |\n",
+    let mut text = format!(
+        "| {} |\n|{}\n",
+        MARKDOWN_COLUMNS.join(" | "),
+        "---|".repeat(MARKDOWN_COLUMNS.len())
     );
-    text.push_str(&format!("|{}\n", "---|".repeat(25)));
     let time = |t: Option<f64>| t.map_or("–".to_string(), |t| format!("{t:.2}"));
     let error = |e: Option<f64>| e.map_or("–".to_string(), |e| format!("{e:.1e}"));
     let megabytes = |m: Option<f64>| m.map_or("–".to_string(), |m| format!("{m:.1}"));
@@ -892,20 +937,10 @@ pub fn bench_markdown(bench: &Bench) -> String {
     }
     text.push('\n');
     for row in bench.rows.iter().filter(|r| r.sweep == Sweep::Reference) {
-        let m = &row.measured;
-        let value = |v: Option<f64>| v.map_or("–".to_string(), |v| format!("{v:.8e}"));
         text.push_str(&format!(
-            "Reference {}: {}, {}×{}, N = {}, ε = {:.0e}: λ_c = {}, λ(a/h = 1) = {}, a/h(1.1 λ_c) = {} ({}).\n",
-            row.model,
-            row.settings.method.label(),
-            row.settings.nx,
-            row.settings.ny,
-            row.settings.order,
-            row.settings.series_tolerance,
-            value(m.critical_load),
-            value(m.load_at_amplitude_1),
-            value(m.amplitude_at_1_1),
-            bench.load_unit,
+            "Reference {} ({}).\n",
+            reference_line(row, "–"),
+            bench.load_unit
         ));
     }
     text
@@ -956,20 +991,7 @@ pub fn bench_table(bench: &Bench) -> String {
         ));
     }
     for row in bench.rows.iter().filter(|r| r.sweep == Sweep::Reference) {
-        let m = &row.measured;
-        let value = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.8e}"));
-        text.push_str(&format!(
-            "reference {}: {}, {}×{}, N = {}, ε = {:.0e}: λ_c = {}, λ(a/h=1) = {}, a/h(1.1 λ_c) = {}\n",
-            row.model,
-            row.settings.method.label(),
-            row.settings.nx,
-            row.settings.ny,
-            row.settings.order,
-            row.settings.series_tolerance,
-            value(m.critical_load),
-            value(m.load_at_amplitude_1),
-            value(m.amplitude_at_1_1),
-        ));
+        text.push_str(&format!("reference {}\n", reference_line(row, "—")));
         if let Some(l) = bench.closed_form_critical_load {
             text.push_str(&format!(
                 "closed form (42): λ_c = {l:.8e} {}, reference off by {}\n",

@@ -375,12 +375,9 @@ pub fn follow_path_anm<M: EnergyModel>(
         start_factorized: false,
     };
     run.statistics.tape_bytes = Some(run.tape.bytes());
-    let start_residual = timed_relative_residual(
-        problem,
-        &mut run.statistics,
-        &run.state.displacement,
-        run.state.load,
-    );
+    let start_residual = run
+        .statistics
+        .time_residual(|| problem.relative_residual(&run.state.displacement, run.state.load));
     let event = PathEvent {
         step: 0,
         interior: false,
@@ -399,20 +396,6 @@ pub fn follow_path_anm<M: EnergyModel>(
         }
     }
     run.finish(PathStop::MaxSteps)
-}
-
-/// [`Problem::relative_residual`], counted and timed in `statistics`.
-fn timed_relative_residual<M: EnergyModel>(
-    problem: &Problem<M>,
-    statistics: &mut PathStatistics,
-    displacement: &[f64],
-    load: f64,
-) -> f64 {
-    let clock = Instant::now();
-    let residual = problem.relative_residual(displacement, load);
-    statistics.residual_assemblies += 1;
-    statistics.residual_seconds += clock.elapsed().as_secs_f64();
-    residual
 }
 
 /// The state of one ANM path.
@@ -467,7 +450,9 @@ impl<M: EnergyModel> AnmRun<'_, M> {
 
     /// The field-balanced relative residual at a point, counted and timed.
     fn relative_residual(&mut self, displacement: &[f64], load: f64) -> f64 {
-        timed_relative_residual(self.problem, &mut self.statistics, displacement, load)
+        let problem = self.problem;
+        self.statistics
+            .time_residual(|| problem.relative_residual(displacement, load))
     }
 
     /// One step: factorise, series, bifurcation bookkeeping, step length, end point, dense

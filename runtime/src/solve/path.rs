@@ -109,6 +109,18 @@ pub struct PathStatistics {
     pub factor_nonzeros: Option<usize>,
 }
 
+impl PathStatistics {
+    /// Runs one `f64` residual evaluation, counting it in `residual_assemblies` and its time in
+    /// `residual_seconds` (every solver's residual checks go through here).
+    pub fn time_residual<T>(&mut self, evaluate: impl FnOnce() -> T) -> T {
+        let clock = std::time::Instant::now();
+        let residual = evaluate();
+        self.residual_assemblies += 1;
+        self.residual_seconds += clock.elapsed().as_secs_f64();
+        residual
+    }
+}
+
 /// The outcome of a path-following run: whatever was computed, and why it ended.
 #[derive(Debug)]
 pub struct PathResult {

@@ -219,11 +219,9 @@ impl<M: EnergyModel> Linearization<'_, M> {
 
     /// $`(R, \|R\|/\text{scale})`$ at a point.
     fn residual(&mut self, displacement: &[f64], load: f64) -> (Vec<f64>, f64) {
-        let clock = Instant::now();
-        let residual = self.problem.residual_with_relative(displacement, load);
-        self.statistics.residual_assemblies += 1;
-        self.statistics.residual_seconds += clock.elapsed().as_secs_f64();
-        residual
+        let problem = self.problem;
+        self.statistics
+            .time_residual(|| problem.residual_with_relative(displacement, load))
     }
 }
 
