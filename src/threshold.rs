@@ -223,16 +223,19 @@ pub fn find_threshold_reusing<M: EnergyModel>(
             reference_load = search.4;
             (search.0, search.1, Some(search.2), source, search.3)
         }
+        (Wavenumber::Fixed(q), true, _) => {
+            // Shifted about eq. (42) at this Q where it applies (`closed_form_load_at`).
+            let guess = closed_form_load_at(scene, q);
+            let (buckling, ellipticity, shift) =
+                buckle_at_wavenumber(scene, problem, factor, quiet, &mut notes, q, guess)?;
+            reference_load = shift;
+            (buckling, ellipticity, Some(q), "fixed".into(), Vec::new())
+        }
         _ => {
             let (buckling, shift) = robust_buckling(scene, problem, factor, quiet, &mut notes)?;
             reference_load = shift;
             let ellipticity = ellipticity_at_critical_load(problem, &buckling, reference_load);
-            let q = match scene.model.wavenumber {
-                Wavenumber::Fixed(q) if has_wavenumber => Some(q),
-                _ => None,
-            };
-            let source = if q.is_some() { "fixed" } else { "mode" };
-            (buckling, ellipticity, q, source.to_string(), Vec::new())
+            (buckling, ellipticity, None, "mode".into(), Vec::new())
         }
     };
     let wavelength = match q {
@@ -306,7 +309,7 @@ fn reference_carrier<M: EnergyModel>(
     quiet: bool,
     notes: &mut Vec<String>,
 ) -> Result<(LinearBuckling, EllipticityReport, f64, f64), Error> {
-    let (q, _) = reference_threshold(scene, quiet)?;
+    let (q, load) = reference_threshold(scene, quiet)?;
     notes.push(if has_phase(M::SPEC) {
         format!(
             "model `{}` has a phase: its local wavenumber Q + ∂arg(w1) is free, and its bending (a second-order expansion about Q) is only valid near the carrier Q, so λ_c(Q) has no meaningful minimum of its own; Q = {q:.6e} 1/mm is the reference-envelope minimiser on the same scene",
@@ -318,8 +321,11 @@ fn reference_carrier<M: EnergyModel>(
             M::SPEC.name
         )
     });
+    // The reference envelope's threshold is within a fraction of a per cent of this model's
+    // at the same Q (example 1: 8.9521e-2 against 8.9519e-2 for the complex envelope): the
+    // analysis is shifted about it.
     let (buckling, ellipticity, shift) =
-        buckle_at_wavenumber(scene, problem, factor, quiet, notes, q, None)?;
+        buckle_at_wavenumber(scene, problem, factor, quiet, notes, q, Some(load))?;
     Ok((buckling, ellipticity, q, shift))
 }
 
@@ -873,6 +879,16 @@ pub fn closed_form_threshold(scene: &Scene) -> Option<(f64, f64)> {
     (scene.load.kind == LoadKind::Biaxial && scene.model.direction_degrees == 0.0)
         .then(|| scene.clamped_rectangle().critical_point())
         .flatten()
+}
+
+/// The critical load of eq. (42) at the wavenumber `q` (the neutral curve), where the closed
+/// form applies to the scene ([`closed_form_threshold`]): a guess the analysis at a fixed $`Q`$
+/// is shifted about (0.98 times it, kept only when the tangent there has no negative pivot, so
+/// a guess above the model's own threshold costs one factorisation and changes nothing). On
+/// example 1 at 40 × 20 it takes the analysis from about 40 Lanczos iterations to 8.
+fn closed_form_load_at(scene: &Scene, q: f64) -> Option<f64> {
+    closed_form_threshold(scene)?;
+    Some(scene.clamped_rectangle().neutral_curve(q)).filter(|l| l.is_finite() && *l > 0.0)
 }
 
 struct ThresholdVisitor<'a> {
