@@ -510,6 +510,8 @@ fn follow<M: EnergyModel>(
                 },
                 // The threshold's mode starts the eigen-solver of the bifurcation prediction.
                 bifurcation_mode_guess: buckling_mode,
+                // ... and its load is the guess the prediction is shifted towards.
+                bifurcation_load_guess: Some(critical_load).filter(|l| l.is_finite()),
                 ..AnmOptions::default()
             };
             follow_path_anm(problem, start, factor, &options, observer, anm_steps)
