@@ -533,3 +533,92 @@ fn follow<M: EnergyModel>(
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The first predicted bifurcation load and the factorisations of a short ANM path for
+    /// each guess of `AnmOptions::bifurcation_load_guess`.
+    struct Predictions<'a> {
+        scene: &'a Scene,
+        guesses: &'a [Option<f64>],
+    }
+
+    impl ModelVisitor for Predictions<'_> {
+        type Output = (f64, Vec<(Option<f64>, usize)>);
+        fn visit<M: EnergyModel>(self, mut model: M) -> Self::Output {
+            let scene = self.scene;
+            configure_model(scene, &mut model, 1.0).unwrap();
+            let layout = layout_of::<M>(scene).unwrap();
+            let mut problem = build_problem(scene, model).unwrap();
+            let mut factor = analyse(&problem).unwrap();
+            let threshold =
+                find_threshold_reusing(scene, &mut problem, &mut factor, true, None).unwrap();
+            add_imperfection(scene, &mut problem, &layout, &threshold).unwrap();
+            let critical = threshold.critical_load();
+            let outcomes = self
+                .guesses
+                .iter()
+                .map(|factor_of_critical| {
+                    let start = start_point(&problem, &mut factor, &threshold).unwrap();
+                    let options = AnmOptions {
+                        max_steps: 6,
+                        bifurcation_mode_guess: threshold.buckling.modes.first().cloned(),
+                        bifurcation_load_guess: factor_of_critical.map(|f| f * critical),
+                        ..AnmOptions::default()
+                    };
+                    let mut steps = Vec::new();
+                    let mut observer = |_: &PathEvent| PathControl::Continue;
+                    let result = follow_path_anm(
+                        &problem,
+                        start,
+                        &mut factor,
+                        &options,
+                        &mut observer,
+                        &mut steps,
+                    );
+                    (
+                        steps.iter().find_map(|s| s.predicted_bifurcation),
+                        result.statistics.factorizations,
+                    )
+                })
+                .collect();
+            (critical, outcomes)
+        }
+    }
+
+    /// Example 1 on 12 × 6: the ANM's bifurcation prediction is the same load whether its
+    /// eigen-solve is unshifted, shifted towards the threshold, or offered a guess beyond the
+    /// path's bifurcation (the shifted tangent is indefinite and the unshifted analysis
+    /// decides). Each guess costs exactly one factorisation more than none, so the shifted
+    /// analysis did run; the predicted load is the threshold to 1e-4 (the path starts from an
+    /// imperfect state).
+    #[test]
+    fn example_one_bifurcation_prediction_does_not_depend_on_the_load_guess() {
+        let mut scene = Scene::default();
+        for setting in ["mesh.nx=12", "mesh.ny=6"] {
+            scene.apply_override(setting).unwrap();
+        }
+        let guesses = [None, Some(1.0), Some(1.5)];
+        let (critical, outcomes) = with_model(
+            &scene.model.name,
+            Predictions {
+                scene: &scene,
+                guesses: &guesses,
+            },
+        )
+        .unwrap();
+        eprintln!("λ_c {critical:.12e}; (prediction, factorisations): {outcomes:?}");
+        let unshifted = outcomes[0].0.expect("a prediction without a guess");
+        assert!((unshifted - critical).abs() < 1e-4 * critical);
+        for &(predicted, factorizations) in &outcomes[1..] {
+            let predicted = predicted.expect("a prediction with a guess");
+            assert!(
+                (predicted - unshifted).abs() < 1e-9 * unshifted,
+                "{predicted:e} against {unshifted:e}"
+            );
+            assert_eq!(factorizations, outcomes[0].1 + 1);
+        }
+    }
+}
