@@ -86,17 +86,13 @@ pub struct PointwiseReport {
     pub violated_fraction: f64,
 }
 
-/// Most fields with gradients the check handles.
-const MAX_GRADIENT_FIELDS: usize = 8;
-
-/// Smallest LDLᵀ pivot of the leading `m × m` block (destroyed) and its index.
-fn smallest_pivot(
-    a: &mut [[f64; MAX_GRADIENT_FIELDS]; MAX_GRADIENT_FIELDS],
-    m: usize,
-) -> (f64, usize) {
+/// Smallest $`LDL^T`$ pivot of the symmetric `m × m` matrix `a` (row-major, destroyed) and its
+/// index; it stops at the first pivot that is not positive (the rest would mean nothing).
+#[inline(always)]
+fn smallest_pivot(a: &mut [f64], m: usize) -> (f64, usize) {
     let mut smallest = (f64::INFINITY, 0);
     for k in 0..m {
-        let d = a[k][k];
+        let d = a[k * m + k];
         if d < smallest.0 {
             smallest = (d, k);
         }
@@ -104,12 +100,11 @@ fn smallest_pivot(
             // Not positive definite: the remaining pivots are meaningless.
             return smallest;
         }
-        // Schur complement of the pivot (full symmetric update; m ≤ 8).
-        let pivot_row = a[k];
-        for row in a.iter_mut().take(m).skip(k + 1) {
-            let l = row[k] / d;
-            for (j, value) in row.iter_mut().enumerate().take(m).skip(k + 1) {
-                *value -= l * pivot_row[j];
+        // Schur complement of the pivot (full symmetric update; m is small).
+        for i in k + 1..m {
+            let l = a[i * m + k] / d;
+            for j in k + 1..m {
+                a[i * m + j] -= l * a[k * m + j];
             }
         }
     }
@@ -244,17 +239,57 @@ fn direction_table() -> [([f64; 3], f64); DIRECTIONS] {
 /// $`\mathbf n = (\cos\theta, \sin\theta)`$,
 /// $`A_{ij}(\mathbf n) = \cos^2\theta\, H^{xx}_{ij} + \cos\theta\sin\theta\,(H^{xy}_{ij} + H^{yx}_{ij})
 /// + \sin^2\theta\, H^{yy}_{ij}`$: the three $`m\times m`$ blocks are formed once per point.
+///
+/// It runs at the nine Gauss points of every element at every step end, so the usual sizes
+/// (one to six fields with gradients) get their own copy with `m` a constant and the arrays on
+/// the stack, which the compiler unrolls; any larger `m` takes the same code on the heap.
 fn worst_direction(
     h: &[f64],
     m: usize,
     directions: &[([f64; 3], f64); DIRECTIONS],
 ) -> (f64, f64, usize) {
+    macro_rules! on_stack {
+        ($m:literal) => {
+            worst_direction_in(
+                h,
+                $m,
+                directions,
+                &mut [[0.0; 3]; $m * $m],
+                &mut [0.0; $m * $m],
+            )
+        };
+    }
+    match m {
+        1 => on_stack!(1),
+        2 => on_stack!(2),
+        3 => on_stack!(3),
+        4 => on_stack!(4),
+        5 => on_stack!(5),
+        6 => on_stack!(6),
+        _ => worst_direction_in(
+            h,
+            m,
+            directions,
+            &mut vec![[0.0; 3]; m * m],
+            &mut vec![0.0; m * m],
+        ),
+    }
+}
+
+/// [`worst_direction`] with its work space: `blocks` and `acoustic` hold `m × m` entries.
+#[inline(always)]
+fn worst_direction_in(
+    h: &[f64],
+    m: usize,
+    directions: &[([f64; 3], f64); DIRECTIONS],
+    blocks: &mut [[f64; 3]],
+    acoustic: &mut [f64],
+) -> (f64, f64, usize) {
     // (H^xx, H^xy + H^yx, H^yy) of each pair of gradient fields.
-    let mut blocks = [[[0.0; 3]; MAX_GRADIENT_FIELDS]; MAX_GRADIENT_FIELDS];
     let at = |i: usize, a: usize, j: usize, b: usize| h[(2 * i + a) * 2 * m + (2 * j + b)];
-    for (i, row) in blocks.iter_mut().enumerate().take(m) {
-        for (j, entry) in row.iter_mut().enumerate().take(m) {
-            *entry = [
+    for i in 0..m {
+        for j in 0..m {
+            blocks[i * m + j] = [
                 at(i, 0, j, 0),
                 at(i, 0, j, 1) + at(i, 1, j, 0),
                 at(i, 1, j, 1),
@@ -263,16 +298,12 @@ fn worst_direction(
     }
     let mut worst = (f64::INFINITY, 0.0, 0);
     for &(weights, angle) in directions {
-        // A(n) on the stack, then its LDLᵀ pivots (positive definite ⇔ all pivots > 0).
-        let mut acoustic = [[0.0; MAX_GRADIENT_FIELDS]; MAX_GRADIENT_FIELDS];
-        let mut scale: f64 = 0.0;
-        for (i, (row, block_row)) in acoustic.iter_mut().zip(&blocks).enumerate().take(m) {
-            for (value, block) in row.iter_mut().zip(block_row).take(m) {
-                *value = weights[0] * block[0] + weights[1] * block[1] + weights[2] * block[2];
-            }
-            scale = scale.max(row[i].abs());
+        // A(n), then its LDLᵀ pivots (positive definite ⇔ all pivots > 0).
+        for (value, block) in acoustic.iter_mut().zip(blocks.iter()) {
+            *value = weights[0] * block[0] + weights[1] * block[1] + weights[2] * block[2];
         }
-        let (pivot, at) = smallest_pivot(&mut acoustic, m);
+        let scale = (0..m).fold(0.0_f64, |scale, i| scale.max(acoustic[i * m + i].abs()));
+        let (pivot, at) = smallest_pivot(acoustic, m);
         let margin = if scale > 0.0 { pivot / scale } else { 0.0 };
         if margin < worst.0 {
             worst = (margin, angle, at);
@@ -544,5 +575,58 @@ mod tests {
         assert!(!f.stable);
         assert!((f.violated_fraction - 1.0).abs() < 1e-12);
         assert!((f.worst_margin + 0.5).abs() < 1e-15, "{}", f.worst_margin);
+    }
+
+    /// The gradient block $`H`$ (`2m × 2m`, index `2 * field + axis`) of `m` uncoupled fields
+    /// with $`\psi = \tfrac12 c_i\,(\partial_X f_i)^2 + \tfrac12 s_i\,(\partial_Y f_i)^2`$:
+    /// $`A(\mathbf n) = \mathrm{diag}(c_i\cos^2\theta + s_i\sin^2\theta)`$.
+    fn uncoupled_block(c: &[f64], s: &[f64]) -> Vec<f64> {
+        let m = c.len();
+        let mut h = vec![0.0; 4 * m * m];
+        for i in 0..m {
+            h[(2 * i) * 2 * m + 2 * i] = c[i];
+            h[(2 * i + 1) * 2 * m + 2 * i + 1] = s[i];
+        }
+        h
+    }
+
+    #[test]
+    fn worst_direction_of_uncoupled_fields_is_the_closed_form_on_stack_and_heap() {
+        // Fields 0..m-1 isotropic with stiffness 1 + i; the last has c = 1 along X and s = -0.5
+        // along Y: A_last(θ) = cos²θ - sin²θ/2, smallest at θ = π/2 (sampled exactly). For
+        // m ≥ 2 the scale max_j |A_jj| is m - 1 in every direction (1 for m = 2), so the margin
+        // is -0.5 / max(m - 1, 1) at π/2. For m = 1 the margin is the sign, -1, first reached at
+        // θ = 55° (the first sampled θ with tan²θ > 2).
+        let directions = direction_table();
+        for m in 1..=8 {
+            let mut c: Vec<f64> = (0..m).map(|i| 1.0 + i as f64).collect();
+            let mut s = c.clone();
+            (c[m - 1], s[m - 1]) = (1.0, -0.5);
+            let h = uncoupled_block(&c, &s);
+            let (margin, angle, slot) = worst_direction(&h, m, &directions);
+            let (expected_margin, expected_angle) = if m == 1 {
+                (-1.0, 55f64.to_radians())
+            } else {
+                (-0.5 / (m as f64 - 1.0), std::f64::consts::FRAC_PI_2)
+            };
+            assert!(
+                (margin - expected_margin).abs() < 1e-15,
+                "m = {m}: margin {margin}"
+            );
+            assert!(
+                (angle - expected_angle).abs() < 1e-12,
+                "m = {m}: angle {angle}"
+            );
+            assert_eq!(slot, m - 1, "m = {m}");
+            // The same on the heap (the path of m > 6), bit for bit.
+            let heap = worst_direction_in(
+                &h,
+                m,
+                &directions,
+                &mut vec![[0.0; 3]; m * m],
+                &mut vec![0.0; m * m],
+            );
+            assert_eq!(heap, (margin, angle, slot), "m = {m}");
+        }
     }
 }
