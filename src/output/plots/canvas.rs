@@ -8,6 +8,7 @@ use plotters::coord::Shift;
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 use plotters::style::{FontDesc, FontStyle, FontTransform, register_font};
+use rayon::prelude::*;
 use std::ffi::OsString;
 use std::io;
 use std::path::{Path, PathBuf};
@@ -172,25 +173,39 @@ pub(crate) fn render(stem: &Path, figure: &impl Figure) -> io::Result<PlotOutput
     })
 }
 
-/// Averages each `factor × factor` block of an RGB image.
+/// Averages each `factor × factor` block of an RGB image (rounded to nearest); a partial block
+/// at the right or bottom edge is dropped. Rows of the small image are independent, so they are
+/// averaged in parallel; the result does not depend on the thread count.
 fn downsample(pixels: &[u8], width: u32, height: u32, factor: u32) -> Vec<u8> {
-    let (small_width, small_height) = (width / factor, height / factor);
-    let mut small = Vec::with_capacity(3 * (small_width * small_height) as usize);
-    let count = factor * factor;
-    for row in 0..small_height {
-        for column in 0..small_width {
-            let mut sum = [0u32; 3];
-            for dy in 0..factor {
-                let start = 3 * ((row * factor + dy) * width + column * factor) as usize;
-                for dx in 0..factor as usize {
-                    for (c, total) in sum.iter_mut().enumerate() {
-                        *total += pixels[start + 3 * dx + c] as u32;
+    let (width, factor) = (width as usize, factor as usize);
+    let small_width = width / factor;
+    let small_height = height as usize / factor;
+    let count = (factor * factor) as u32;
+    let mut small = vec![0u8; 3 * small_width * small_height];
+    small
+        .par_chunks_mut(3 * small_width.max(1))
+        .enumerate()
+        .for_each_init(
+            || vec![0u32; 3 * small_width],
+            |sums, (row, out)| {
+                sums.fill(0);
+                for dy in 0..factor {
+                    let start = 3 * (row * factor + dy) * width;
+                    let line = &pixels[start..start + 3 * small_width * factor];
+                    for (sum, block) in sums.chunks_exact_mut(3).zip(line.chunks_exact(3 * factor))
+                    {
+                        for pixel in block.chunks_exact(3) {
+                            sum[0] += pixel[0] as u32;
+                            sum[1] += pixel[1] as u32;
+                            sum[2] += pixel[2] as u32;
+                        }
                     }
                 }
-            }
-            small.extend(sum.map(|total| ((total + count / 2) / count) as u8));
-        }
-    }
+                for (value, total) in out.iter_mut().zip(sums.iter()) {
+                    *value = ((total + count / 2) / count) as u8;
+                }
+            },
+        );
     small
 }
 
@@ -486,5 +501,52 @@ pub(crate) fn format_tick(value: f64, decimals: Option<usize>) -> String {
         text.trim_start_matches('-').to_string()
     } else {
         text
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The block average written out pixel by pixel, with the edge blocks dropped.
+    fn block_average(pixels: &[u8], width: u32, height: u32, factor: u32) -> Vec<u8> {
+        let mut small = Vec::new();
+        for row in 0..height / factor {
+            for column in 0..width / factor {
+                for channel in 0..3 {
+                    let mut total = 0u32;
+                    for dy in 0..factor {
+                        for dx in 0..factor {
+                            let (y, x) = (row * factor + dy, column * factor + dx);
+                            total += pixels[(3 * (y * width + x) + channel) as usize] as u32;
+                        }
+                    }
+                    let count = factor * factor;
+                    small.push(((total + count / 2) / count) as u8);
+                }
+            }
+        }
+        small
+    }
+
+    #[test]
+    fn downsample_is_the_rounded_block_average_with_partial_edge_blocks_dropped() {
+        // 17 × 11 pixels: neither side a multiple of 3 or 2. A deterministic scramble of bytes.
+        let (width, height) = (17u32, 11u32);
+        let pixels: Vec<u8> = (0..3 * width * height)
+            .map(|i| (i.wrapping_mul(2_654_435_761) >> 13) as u8)
+            .collect();
+        for factor in [1, 2, 3] {
+            let small = downsample(&pixels, width, height, factor);
+            assert_eq!(
+                small,
+                block_average(&pixels, width, height, factor),
+                "factor {factor}"
+            );
+            assert_eq!(small.len() as u32, 3 * (width / factor) * (height / factor));
+        }
+        // A block of one colour keeps it exactly.
+        let uniform = vec![200u8; 3 * 9 * 6];
+        assert!(downsample(&uniform, 9, 6, 3).iter().all(|&v| v == 200));
     }
 }
