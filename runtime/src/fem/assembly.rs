@@ -360,18 +360,29 @@ impl<M: EnergyModel> Assembler<M> {
     /// Tangent values $`\partial^2\Pi/\partial U_a\partial U_b`$ on [`Self::pattern`], generic
     /// over the scalar (dual numbers give directional derivatives of the tangent).
     pub fn tangent_values<S: Scalar>(&self, global: &[S]) -> Vec<S> {
-        let m_local = QUAD8_NODES * self.dofs.field_count;
+        let nf = self.dofs.field_count;
         let mut out = vec![S::zero(); self.pattern.nnz()];
         self.accumulate(&mut out, |e, sink| {
             let element = self.element_tangent(e, global);
-            // A holds each pattern entry once (diagonal entries halved): K = A + Aᵀ.
-            for (index, slot) in self.element_slots[e].iter().enumerate() {
-                if let Some(s) = slot {
-                    let (row, col) = (index / m_local, index % m_local);
-                    sink.add(
-                        *s,
-                        element[row * m_local + col] + element[col * m_local + row],
-                    );
+            let block = |fi: usize, fj: usize| {
+                &element[(fi * nf + fj) * QUAD8_NODES * QUAD8_NODES..][..QUAD8_NODES * QUAD8_NODES]
+            };
+            // A holds each pattern entry once (diagonal entries halved): K = A + Aᵀ. Local dof
+            // `k * nf + f` is node k of field f; the slots are row-major over local dofs.
+            let mut slots = self.element_slots[e].iter();
+            for k in 0..QUAD8_NODES {
+                for fi in 0..nf {
+                    for l in 0..QUAD8_NODES {
+                        for fj in 0..nf {
+                            if let Some(Some(s)) = slots.next() {
+                                sink.add(
+                                    *s,
+                                    block(fi, fj)[k * QUAD8_NODES + l]
+                                        + block(fj, fi)[l * QUAD8_NODES + k],
+                                );
+                            }
+                        }
+                    }
                 }
             }
         });
@@ -380,13 +391,14 @@ impl<M: EnergyModel> Assembler<M> {
 
     /// The element tangent's half $`A`$ with $`K^e = A + A^\top`$: every upper-triangle entry
     /// $`(i, j)`$ of each term's jet Hessian added once as the outer product
-    /// $`h_{ij} w\, B_i B_j^\top`$ (diagonal entries with $`h_{ii}/2`$), row-major
-    /// $`m \times m`$ with $`m = 8 \times`$ fields.
+    /// $`h_{ij} w\, B_i B_j^\top`$ (diagonal entries with $`h_{ii}/2`$). Stored by field blocks:
+    /// the entry of nodes $`(k, l)`$ and fields $`(f_i, f_j)`$ is at
+    /// `((fi * nf + fj) * 8 + k) * 8 + l`, so that each outer product adds to contiguous rows
+    /// of 8 (which the compiler vectorises).
     fn element_tangent<S: Scalar>(&self, e: usize, global: &[S]) -> Vec<S> {
         let nf = self.dofs.field_count;
-        let m_local = QUAD8_NODES * nf;
         let local = self.gather(e, global);
-        let mut element = vec![S::zero(); m_local * m_local];
+        let mut element = vec![S::zero(); nf * nf * QUAD8_NODES * QUAD8_NODES];
         let mut jet = [S::zero(); MAX_JET];
         let mut hessian = [S::zero(); MAX_JET * (MAX_JET + 1) / 2];
         let spec = M::SPEC;
@@ -405,11 +417,12 @@ impl<M: EnergyModel> Assembler<M> {
                     let (fj, rj) = term.rows[j];
                     let c = hessian[p] * if i == j { 0.5 * w } else { w };
                     let (bi, bj) = (&basis[ri], &basis[rj]);
-                    for k in 0..QUAD8_NODES {
-                        let a = c * bi[k];
-                        let row = &mut element[(k * nf + fi) * m_local..][..m_local];
-                        for l in 0..QUAD8_NODES {
-                            row[l * nf + fj] = row[l * nf + fj] + a * bj[l];
+                    let block = &mut element[(fi * nf + fj) * QUAD8_NODES * QUAD8_NODES..]
+                        [..QUAD8_NODES * QUAD8_NODES];
+                    for (row, &b) in block.chunks_exact_mut(QUAD8_NODES).zip(bi.iter()) {
+                        let a = c * b;
+                        for (value, &b) in row.iter_mut().zip(bj.iter()) {
+                            *value = *value + a * b;
                         }
                     }
                 }
