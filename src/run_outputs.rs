@@ -310,20 +310,30 @@ fn write_curve_plots(
     trace: &Trace,
     dir: &Path,
 ) -> Result<Vec<(Vec<PathBuf>, String)>, Error> {
-    let mut out = Vec::new();
-    let stem = dir.join("response");
-    let plot = plot_response(
-        &stem,
-        &format!("{}: physical wrinkle amplitude", context.spec.name),
-        &response(context, trace),
-    )
-    .map_err(io_error(&stem))?;
-    out.push((
-        plot.files,
+    // Independent figures, drawn side by side; listed in a fixed order.
+    let (response_plot, (profiles, local_wavenumber)) = rayon::join(
+        || {
+            let stem = dir.join("response");
+            plot_response(
+                &stem,
+                &format!("{}: physical wrinkle amplitude", context.spec.name),
+                &response(context, trace),
+            )
+            .map_err(io_error(&stem))
+        },
+        || {
+            rayon::join(
+                || write_profiles(context, trace, dir),
+                || write_local_wavenumber(context, trace, dir),
+            )
+        },
+    );
+    let mut out = vec![(
+        response_plot?.files,
         "Load against physical wrinkle amplitude".to_string(),
-    ));
-    out.extend(write_profiles(context, trace, dir)?);
-    out.extend(write_local_wavenumber(context, trace, dir)?);
+    )];
+    out.extend(profiles?);
+    out.extend(local_wavenumber?);
     Ok(out)
 }
 
