@@ -276,8 +276,9 @@ impl MapFigure<'_> {
     /// The data area's pixels, `columns × rows` RGB from the top row down. The field is smooth
     /// on the scale of a (1×) pixel, so it is evaluated once per block of `scale × scale`
     /// back-end pixels, at the block's centre, and the colour fills the block: the
-    /// supersampled PNG costs what the SVG's 1× raster does (a ninth), and after the PNG's
-    /// averaging each pixel has the colour of the field at its centre, as in the SVG.
+    /// supersampled PNG costs what the SVG's 1× raster does (a ninth). After the PNG's
+    /// averaging each pixel has the colour of the field near its centre, as in the SVG (where
+    /// the data area does not start on the 1× grid, a pixel blends two neighbouring blocks).
     fn raster(&self, columns: u32, rows: u32, scale: Scale) -> Vec<u8> {
         let field = &self.map.field;
         let block = (scale.0.round() as u32).max(1);
