@@ -69,6 +69,12 @@ pub const MIN_WAVES_PER_DOMAIN: f64 = 4.0;
 /// Area fraction where strong ellipticity may fail at the threshold (stress singularities at
 /// clamped–free corners) before the threshold is flagged.
 pub const MAX_NON_ELLIPTIC_FRACTION: f64 = 1e-2;
+/// A count below a limit, with two decimals rounded down, so that a count just below the limit
+/// is never printed as the limit itself (7.994 was shown as "8.0 … (at least 8)").
+fn below_limit_text(value: f64) -> String {
+    format!("{:.2}", (100.0 * value).floor() / 100.0)
+}
+
 /// Fewest Q8 elements per wavelength for a resolved plate mode.
 pub const MIN_ELEMENTS_PER_WAVELENGTH: f64 = 8.0;
 
@@ -824,7 +830,8 @@ fn validity_warnings(
             warnings.push(ValidityWarning {
                 check: "mode_resolution",
                 message: format!(
-                    "{per_wavelength:.1} elements per wavelength ({l:.4e} mm) along {axis}: the plate's mode is not resolved (at least {MIN_ELEMENTS_PER_WAVELENGTH}; refine mesh.n{})",
+                    "{} elements per wavelength ({l:.4e} mm) along {axis}: the plate's mode is not resolved (at least {MIN_ELEMENTS_PER_WAVELENGTH}; refine mesh.n{})",
+                    below_limit_text(per_wavelength),
                     axis.to_lowercase()
                 ),
             });
@@ -914,4 +921,18 @@ impl ModelVisitor for ThresholdVisitor<'_> {
 pub fn buckle(scene: &Scene, quiet: bool) -> Result<Threshold, Error> {
     with_model(&scene.model.name, ThresholdVisitor { scene, quiet })
         .unwrap_or_else(|| Err(unknown_model(scene)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_count_just_below_the_resolution_limit_is_not_printed_as_the_limit() {
+        // 120 × 30 elements on example 1's 400 mm: 26.649 mm / 3.333 mm = 7.9947 elements.
+        assert_eq!(below_limit_text(26.649_139 / (400.0 / 120.0)), "7.99");
+        assert_eq!(below_limit_text(6.4), "6.40");
+        assert_eq!(below_limit_text(2.0), "2.00");
+        assert_eq!(below_limit_text(7.999_999), "7.99");
+    }
 }
