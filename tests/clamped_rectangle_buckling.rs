@@ -118,9 +118,10 @@ fn clamped_rectangle_critical_load_converges_at_fourth_order() {
 /// FE minimum from one that stopped where it started. Independent check: the FE critical load at
 /// $`Q^*(1 \pm 1\%)`$ (fixed wavenumber, one analysis each) is above the one found, and the
 /// vertex of the parabola in $`\ln Q`$ through the three lies within the search's tolerance of
-/// $`Q^*`$ (2e-4 on the real mesh of the two-level search; 1e-4 on a mesh searched directly).
-/// Cases: the default mesh (two levels), 12 × 6 (one level), 6 × 4 (where the search moves
-/// 1.3e-4 away from the closed form) and a square plate at weak tension.
+/// $`Q^*`$ (2e-4 on a mesh that has a half mesh; 1e-4 on one too small for it). Cases: the
+/// default mesh (refined on the real mesh from the closed form), 12 × 6 (one level), 6 × 4
+/// (where the search moves 1.3e-4 away from the closed form) and a square plate at weak tension.
+/// `threshold_closed_form_fallback.rs` covers a model whose minimum is far from the closed form.
 #[test]
 fn wavenumber_search_from_the_closed_form_ends_at_the_fe_minimum() {
     for (settings, tolerance) in [

@@ -63,7 +63,8 @@ fn example_one_run_reusing_buckle_json_has_the_searched_wavenumber_and_the_same_
     let (cold_t, reused_t) = (&cold["threshold"], &reused["threshold"]);
     assert_eq!(cold_t["wavenumber_mode"], "auto");
     assert_eq!(reused_t["wavenumber_mode"], "auto (reused)");
-    assert!(cold_t["buckling_evaluations"].as_u64().unwrap() > 3);
+    // A search (3 analyses from the closed form on this mesh) against a single analysis.
+    assert!(cold_t["buckling_evaluations"].as_u64().unwrap() >= 3);
     assert_eq!(reused_t["buckling_evaluations"], 1);
     // Bit-identical wavenumber: the search is deterministic and the file keeps every digit.
     let q = searched["wavenumber"].as_f64().unwrap();

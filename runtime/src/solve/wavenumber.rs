@@ -88,6 +88,10 @@ pub struct WavenumberSearchOptions {
     /// the relative distance [`LocalGuess::relative_step`], and falls back to the scan over
     /// `range` only when the minimum is not bracketed near the guess.
     pub local_guess: Option<LocalGuess>,
+    /// Whether a local search that brackets no minimum near its guess falls back to the scan
+    /// over `range` (default); when `false` it fails at once with [`SolveError::Buckling`], so
+    /// that a caller whose guess may belong to another model can try a wider search itself.
+    pub scan_after_local: bool,
 }
 
 /// Where a local search starts (see [`WavenumberSearchOptions::local_guess`]).
@@ -115,6 +119,7 @@ impl Default for WavenumberSearchOptions {
             load_guess: None,
             scan_eigen_tolerance: 1e-5,
             local_guess: None,
+            scan_after_local: true,
         }
     }
 }
@@ -385,6 +390,14 @@ pub fn minimise_critical_load<M: EnergyModel>(
         )?;
         if local.is_some() {
             return finish_search(searcher);
+        }
+        if !options.scan_after_local {
+            return Err(SolveError::Buckling(format!(
+                "no minimum of the critical load bracketed near `{}` = {:e} ({} analyses)",
+                options.parameter,
+                guess.parameter,
+                searcher.evaluations.len()
+            )));
         }
         // Not bracketed near the guess (or an evaluation rejected): the global search.
         searcher.scanning = true;
