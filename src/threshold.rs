@@ -16,15 +16,15 @@
 //! the half mesh's (±2 %, shifted about the closed-form $`\lambda_c`$). When no minimum is
 //! bracketed there, or the one found lies at the edge of the ±10 % bracket (a model whose
 //! $`\lambda_c(Q)`$ is not the one eq. (42) solves), the two-level search runs as above, its
-//! half mesh starting locally from the closed form ±3 % (`closed_form_start`) and falling back to
-//! the scan: the closed form decides where the search starts, not what it finds. A model whose $`\lambda_c(Q)`$ keeps
-//! falling to the end of the range has no wavelength selection of its own: its $`Q`$ is then
-//! taken from the reference envelope's minimisation on the same scene, and a note says so. A
-//! model whose envelope has no gradient at all (the pure membrane, threshold $`DQ^2`$) is known
-//! to be such a model and skips its own scan. A complex envelope (a model with a phase) takes the
-//! reference envelope's $`Q`$ as its carrier too: its phase moves the local wavenumber freely
-//! and its bending is a second-order expansion about $`Q`$, so its own $`\lambda_c(Q)`$ is
-//! meaningless away from the reference optimum (measured: a spurious minimum at
+//! half mesh starting locally from the closed form ±3 % (`closed_form_start`) and falling back
+//! to the scan: the closed form decides where the search starts, not what it finds. A model
+//! whose $`\lambda_c(Q)`$ keeps falling to the end of the range has no wavelength selection of its
+//! own: its $`Q`$ is then taken from the reference envelope's minimisation on the same scene, and a
+//! note says so. A model whose envelope has no gradient at all (the pure membrane, threshold
+//! $`DQ^2`$) is known to be such a model and skips its own scan. A complex envelope (a model with a
+//! phase) takes the reference envelope's $`Q`$ as its carrier too: its phase moves the local
+//! wavenumber freely and its bending is a second-order expansion about $`Q`$, so its own
+//! $`\lambda_c(Q)`$ is meaningless away from the reference optimum (measured: a spurious minimum at
 //! $`Q = 0.099`$/mm, $`\lambda_c`$ half the plate's, on example 1).
 //!
 //! **Reuse.** `wrinkle run --threshold FILE` replaces the search by one analysis at the $`Q`$ of
@@ -71,12 +71,6 @@ pub const MIN_WAVES_PER_DOMAIN: f64 = 4.0;
 /// Area fraction where strong ellipticity may fail at the threshold (stress singularities at
 /// clamped–free corners) before the threshold is flagged.
 pub const MAX_NON_ELLIPTIC_FRACTION: f64 = 1e-2;
-/// A count below a limit, with two decimals rounded down, so that a count just below the limit
-/// is never printed as the limit itself (7.994 was shown as "8.0 … (at least 8)").
-fn below_limit_text(value: f64) -> String {
-    format!("{:.2}", (100.0 * value).floor() / 100.0)
-}
-
 /// Fewest Q8 elements per wavelength for a resolved plate mode.
 pub const MIN_ELEMENTS_PER_WAVELENGTH: f64 = 8.0;
 
@@ -541,8 +535,9 @@ fn two_level_search<M: EnergyModel>(
 ) -> Result<wrinkle_runtime::solve::wavenumber::WavenumberSearch, Error> {
     let solve_error = |e: wrinkle_runtime::solve::SolveError| Error::Solver(e.to_string());
     let options = &closed_form_start(scene, options);
+    let coarse = coarse_scene(scene);
     let mut direct_evaluations = Vec::new();
-    if let (Some(_), Some(guess)) = (coarse_scene(scene), options.local_guess) {
+    if let (Some(_), Some(guess)) = (&coarse, options.local_guess) {
         // The closed form's minimiser is within 1.3e-4 of the FE one on example 1 from 6 × 4 to
         // 40 × 20 elements, closer than the half mesh's (1 %): the real mesh refines from it
         // directly, as it would from the half mesh's. No minimum bracketed near it, or one at
@@ -568,7 +563,7 @@ fn two_level_search<M: EnergyModel>(
             _ => {}
         }
     }
-    let mut search = match coarse_scene(scene) {
+    let mut search = match coarse {
         None => minimise_critical_load(problem, factor, options, observer).map_err(solve_error)?,
         Some(coarse) => {
             // Global scan (or a local search from the closed form) on the coarse mesh, then a
@@ -827,6 +822,12 @@ fn well_posedness_beyond<M: EnergyModel>(
             100.0 * worst.violated_fraction
         ),
     })
+}
+
+/// A count below a limit, with two decimals rounded down, so that a count just below the limit
+/// is never printed as the limit itself (7.994 was shown as "8.0 … (at least 8)").
+fn below_limit_text(value: f64) -> String {
+    format!("{:.2}", (100.0 * value).floor() / 100.0)
 }
 
 /// The validity checks of the module documentation.
