@@ -233,38 +233,60 @@ impl<M: EnergyModel> Assembler<M> {
         }
     }
 
-    /// Gathers the element's nodal values: entry `k * field_count + f`.
+    /// Gathers the element's nodal values by field: `local[f][k]` is field `f` at node `k`, so
+    /// that a jet entry is one 8-term dot product of contiguous values.
     #[inline]
-    fn gather<S: Scalar>(&self, e: usize, global: &[S]) -> [S; QUAD8_NODES * MAX_FIELDS] {
+    fn gather<S: Scalar>(&self, e: usize, global: &[S]) -> ElementLocal<S> {
         let nf = self.dofs.field_count;
-        let mut local = [S::zero(); QUAD8_NODES * MAX_FIELDS];
+        let mut local = [[S::zero(); QUAD8_NODES]; MAX_FIELDS];
         for (k, &node) in self.mesh.elements[e].iter().enumerate() {
-            for f in 0..nf {
-                local[k * nf + f] = global[node * nf + f];
+            let values = &global[node * nf..][..nf];
+            for (field, &value) in local.iter_mut().zip(values) {
+                field[k] = value;
             }
         }
         local
     }
 
-    /// Evaluates the term-local jet at quadrature point `q` of element `e`.
+    /// Evaluates the term-local jet at quadrature point `q` of element `e`:
+    /// $`j_i = \sum_{k=1}^{8} U^{f_i}_k\, B_{r_i k}`$, summed in node order.
     #[inline]
     fn jet_at<S: Scalar>(
         &self,
         term: &TermData,
         values: &ElementValues,
         q: usize,
-        local: &[S],
+        local: &ElementLocal<S>,
         jet: &mut [S],
     ) {
-        let nf = self.dofs.field_count;
         let basis = &values.basis[q];
-        for (i, &(field, row)) in term.rows.iter().enumerate() {
-            let b = &basis[row];
+        for (j, &(field, row)) in jet.iter_mut().zip(&term.rows) {
+            let (u, b) = (&local[field], &basis[row]);
             let mut acc = S::zero();
             for k in 0..QUAD8_NODES {
-                acc = acc + local[k * nf + field] * b[k];
+                acc = acc + u[k] * b[k];
             }
-            jet[i] = acc;
+            *j = acc;
+        }
+    }
+
+    /// Adds the field-major element vector `element` (`element[f][k]`, see [`Self::gather`])
+    /// into `sink` at the free dofs of element `e` (local dof `k * field_count + f`).
+    #[inline]
+    fn for_each_free_dof<S: Scalar>(
+        &self,
+        e: usize,
+        element: &ElementLocal<S>,
+        mut add: impl FnMut(usize, S),
+    ) {
+        let nf = self.dofs.field_count;
+        let mut dofs = self.element_dofs[e].iter();
+        for k in 0..QUAD8_NODES {
+            for field in &element[..nf] {
+                if let Some(Some(i)) = dofs.next() {
+                    add(*i, field[k]);
+                }
+            }
         }
     }
 
@@ -289,16 +311,11 @@ impl<M: EnergyModel> Assembler<M> {
             .fold(S::zero(), |total, value| total + value)
     }
 
-    /// Internal force vector of element `e` (local dofs `k * field_count + f`).
+    /// Internal force vector of element `e`, by field (`element[f][k]`, as [`Self::gather`]).
     #[inline]
-    fn element_internal_forces<S: Scalar>(
-        &self,
-        e: usize,
-        global: &[S],
-    ) -> [S; QUAD8_NODES * MAX_FIELDS] {
-        let nf = self.dofs.field_count;
+    fn element_internal_forces<S: Scalar>(&self, e: usize, global: &[S]) -> ElementLocal<S> {
         let local = self.gather(e, global);
-        let mut element = [S::zero(); QUAD8_NODES * MAX_FIELDS];
+        let mut element = [[S::zero(); QUAD8_NODES]; MAX_FIELDS];
         let mut jet = [S::zero(); MAX_JET];
         let mut residual = [S::zero(); MAX_JET];
         for (t, term) in self.terms.iter().enumerate() {
@@ -309,12 +326,9 @@ impl<M: EnergyModel> Assembler<M> {
                 self.model.residual(t, &jet[..m], &mut residual[..m]);
                 let w = values.weights[q];
                 let basis = &values.basis[q];
-                for (i, &(field, row)) in term.rows.iter().enumerate() {
-                    let r = residual[i];
-                    let b = &basis[row];
-                    for (k, &bk) in b.iter().enumerate().take(QUAD8_NODES) {
-                        let a = k * nf + field;
-                        element[a] = element[a] + r * (bk * w);
+                for (&r, &(field, row)) in residual[..m].iter().zip(&term.rows) {
+                    for (f, &b) in element[field].iter_mut().zip(&basis[row]) {
+                        *f = *f + r * (b * w);
                     }
                 }
             }
@@ -328,11 +342,7 @@ impl<M: EnergyModel> Assembler<M> {
         let mut out = vec![S::zero(); self.dofs.free_count];
         self.accumulate(&mut out, |e, sink| {
             let element = self.element_internal_forces(e, global);
-            for (a, dof) in self.element_dofs[e].iter().enumerate() {
-                if let Some(i) = dof {
-                    sink.add(*i, element[a]);
-                }
-            }
+            self.for_each_free_dof(e, &element, |i, value| sink.add(i, value));
         });
         out
     }
@@ -346,12 +356,10 @@ impl<M: EnergyModel> Assembler<M> {
         let mut both = vec![0.0; 2 * n];
         self.accumulate(&mut both, |e, sink| {
             let element = self.element_internal_forces(e, global);
-            for (a, dof) in self.element_dofs[e].iter().enumerate() {
-                if let Some(i) = dof {
-                    sink.add(*i, element[a]);
-                    sink.add(n + *i, element[a].abs());
-                }
-            }
+            self.for_each_free_dof(e, &element, |i, value| {
+                sink.add(i, value);
+                sink.add(n + i, value.abs());
+            });
         });
         let magnitudes = both.split_off(n);
         (both, magnitudes)
@@ -607,11 +615,11 @@ impl<M: EnergyModel> Assembler<M> {
                         );
                         let w = values.weights[q];
                         let basis = &values.basis[q];
-                        for (i, &(field, row)) in term.rows.iter().enumerate() {
-                            let r = residual[i] * w;
-                            let b = &basis[row];
-                            for k in 0..QUAD8_NODES {
-                                forces[k * nf + field] += r * b[k];
+                        for (&r, &(field, row)) in residual[..m].iter().zip(&term.rows) {
+                            let r = r * w;
+                            let forces = &mut forces[field * QUAD8_NODES..][..QUAD8_NODES];
+                            for (f, &b) in forces.iter_mut().zip(&basis[row]) {
+                                *f += r * b;
                             }
                         }
                     }
@@ -631,12 +639,16 @@ impl<M: EnergyModel> Assembler<M> {
                     .for_each(|(e, p)| work(p, e)),
             }
         }
-        // Scatter in element order: the same sums for any thread count.
+        // Scatter in element order: the same sums for any thread count. Element forces are by
+        // field (`forces[f * 8 + k]`), local dofs by node (`k * nf + f`).
         let mut out = vec![0.0; self.dofs.free_count];
         for (e, forces) in element_forces.chunks(local_len).enumerate() {
-            for (a, dof) in self.element_dofs[e].iter().enumerate() {
-                if let Some(i) = dof {
-                    out[*i] += forces[a];
+            let mut dofs = self.element_dofs[e].iter();
+            for k in 0..QUAD8_NODES {
+                for field in forces.chunks_exact(QUAD8_NODES) {
+                    if let Some(Some(i)) = dofs.next() {
+                        out[*i] += field[k];
+                    }
                 }
             }
         }
@@ -838,3 +850,6 @@ pub fn colour_elements(mesh: &Mesh) -> Vec<Vec<usize>> {
 pub const MAX_FIELDS: usize = 8;
 /// Longest term jet (3 entries per field).
 pub const MAX_JET: usize = 3 * MAX_FIELDS;
+
+/// An element's nodal values (or forces) by field: `[f][k]` is field `f` at node `k`.
+type ElementLocal<S> = [[S; QUAD8_NODES]; MAX_FIELDS];

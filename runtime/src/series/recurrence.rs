@@ -9,10 +9,9 @@
 /// $`(a\,b)_k = \sum_{j=0}^{k} a_j\, b_{k-j}`$ (`a` and `b` hold at least $`k+1`$ coefficients).
 #[inline(always)]
 pub fn product(a: &[f64], b: &[f64], k: usize) -> f64 {
-    let (a, b) = (&a[..=k], &b[..=k]);
     let mut sum = 0.0;
-    for j in 0..=k {
-        sum += a[j] * b[k - j];
+    for (x, y) in a[..=k].iter().zip(b[..=k].iter().rev()) {
+        sum += x * y;
     }
     sum
 }
@@ -21,9 +20,11 @@ pub fn product(a: &[f64], b: &[f64], k: usize) -> f64 {
 #[inline(always)]
 pub fn square(a: &[f64], k: usize) -> f64 {
     let a = &a[..=k];
+    let half = k.div_ceil(2);
     let mut sum = 0.0;
-    for j in 0..k.div_ceil(2) {
-        sum += a[j] * a[k - j];
+    // a_j a_{k-j} for j < ⌈k/2⌉: the first `half` entries against the last `half` reversed.
+    for (x, y) in a[..half].iter().zip(a[k + 1 - half..].iter().rev()) {
+        sum += x * y;
     }
     sum *= 2.0;
     if k.is_multiple_of(2) {
@@ -37,10 +38,9 @@ pub fn square(a: &[f64], k: usize) -> f64 {
 /// and the quotient's $`c_0..c_{k-1}`$.
 #[inline(always)]
 pub fn quotient(a_k: f64, b: &[f64], c: &[f64], k: usize) -> f64 {
-    let (b, c) = (&b[..=k], &c[..k]);
     let mut sum = a_k;
-    for j in 1..=k {
-        sum -= b[j] * c[k - j];
+    for (x, y) in b[1..=k].iter().zip(c[..k].iter().rev()) {
+        sum -= x * y;
     }
     sum / b[0]
 }
