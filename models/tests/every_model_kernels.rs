@@ -167,9 +167,11 @@ fn check_taylor<M: EnergyModel>(model: &M, t: usize, scales: &[f64], rng: &mut S
                 .collect()
         })
         .collect();
+    // Rows of `stride` > slots entries, one per order: the padding and every row not yet
+    // written are NaN, so a kernel reading outside its slots or ahead of its order fails.
     let slots = spec.terms[t].taylor_slots;
-    let stride = ORDERS + 1;
-    let mut tape = vec![0.0; slots.max(1) * stride];
+    let stride = slots + 2;
+    let mut tape = vec![f64::NAN; (ORDERS + 1) * stride];
     model.taylor_start(t, &coefficients[0], &mut tape, stride);
     for k in 1..=ORDERS {
         // Reference: the residual of the series truncated at order k−1, evaluated to order k.

@@ -194,8 +194,10 @@ pub trait EnergyModel: Clone + Send + Sync + 'static {
     /// Taylor mode, order 0: evaluates the term at the jet $`\mathbf{j}_0`$ (term-local, `f64`)
     /// and records on `tape` the order-0 coefficient of every stored intermediate.
     ///
-    /// **Tape layout**: [`TermSpec::taylor_slots`] slots of `stride` coefficients each; slot
-    /// $`s`$, order $`k`$ is `tape[s * stride + k]` (`stride` ≥ the highest order + 1).
+    /// **Tape layout**: one row per order, [`TermSpec::taylor_slots`] slots per row: slot
+    /// $`s`$, order $`k`$ is `tape[k * stride + s]` (`stride` ≥ the slots; the tape holds the
+    /// rows up to the highest order). Order $`k`$ reads the contiguous rows $`0..k`$ and writes
+    /// row $`k`$.
     ///
     /// With the three Taylor-mode kernels the coefficients of the residual along a jet series
     /// $`\mathbf{j}(a) = \sum_k \mathbf{j}_k a^k`$ are computed order by order, each from the
@@ -208,9 +210,9 @@ pub trait EnergyModel: Clone + Send + Sync + 'static {
     /// The default implementation (for hand-written models) stores the jet history and
     /// evaluates [`Self::residual`] on truncated [`Series`]; the code generator overrides all
     /// three kernels with straight-line recurrences.
-    fn taylor_start(&self, _term: usize, jet: &[f64], tape: &mut [f64], stride: usize) {
+    fn taylor_start(&self, _term: usize, jet: &[f64], tape: &mut [f64], _stride: usize) {
         for (i, &value) in jet.iter().enumerate() {
-            tape[i * stride] = value;
+            tape[i] = value;
         }
     }
 
@@ -230,7 +232,7 @@ pub trait EnergyModel: Clone + Send + Sync + 'static {
         let m = out.len();
         let mut jet = [Series::zeros(1); crate::fem::assembly::MAX_JET];
         for (i, series) in jet[..m].iter_mut().enumerate() {
-            let mut coefficients = tape[i * stride..i * stride + order + 1].to_vec();
+            let mut coefficients: Vec<f64> = (0..=order).map(|k| tape[k * stride + i]).collect();
             coefficients[order] = 0.0;
             *series = Series::from_coefficients(&coefficients)
                 .expect("ANM orders stay below the series capacity");
@@ -253,7 +255,7 @@ pub trait EnergyModel: Clone + Send + Sync + 'static {
         stride: usize,
     ) {
         for (i, &value) in jet.iter().enumerate() {
-            tape[i * stride + order] = value;
+            tape[order * stride + i] = value;
         }
     }
 

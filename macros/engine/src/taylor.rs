@@ -367,11 +367,6 @@ pub(crate) struct TaylorKernels {
     pub commit: TokenStream,
 }
 
-/// `tape[slot * stride ..]` as a token expression.
-fn history(slot: usize) -> TokenStream {
-    quote!(&tape[#slot * stride..])
-}
-
 /// Generates the three kernels of `program` (the term's `f64` locals come from `writer`).
 pub(crate) fn generate(program: &TaylorProgram, writer: &KernelWriter<'_>) -> TaylorKernels {
     let reals = writer.statements(&program.real_operands());
@@ -408,7 +403,7 @@ pub(crate) fn generate(program: &TaylorProgram, writer: &KernelWriter<'_>) -> Ta
         };
         start.extend(quote!(let #x: f64 = #value;));
         if let Some(s) = slot(index) {
-            start.extend(quote!(tape[#s * stride] = #x;));
+            start.extend(quote!(tape[#s] = #x;));
         }
     }
 
@@ -417,7 +412,7 @@ pub(crate) fn generate(program: &TaylorProgram, writer: &KernelWriter<'_>) -> Ta
     for (index, instruction) in program.instructions.iter().enumerate() {
         if program.zero_in_prediction[index] {
             if let Some(s) = slot(index) {
-                predict.extend(quote!(tape[#s * stride + k] = 0.0;));
+                predict.extend(quote!(tape[k * stride + #s] = 0.0;));
             }
             continue;
         }
@@ -454,26 +449,26 @@ pub(crate) fn generate(program: &TaylorProgram, writer: &KernelWriter<'_>) -> Ta
                 quote!(#a / #c)
             }
             Instruction::Multiply(a, b) => {
-                let (a, b) = (history(slot(a).unwrap()), history(slot(b).unwrap()));
-                quote!(::wrinkle_runtime::series::recurrence::product(#a, #b, k))
+                let (a, b) = (slot(a).unwrap(), slot(b).unwrap());
+                quote!(::wrinkle_runtime::series::recurrence::product(tape, stride, #a, #b, k))
             }
             Instruction::Square(a) => {
-                let a = history(slot(a).unwrap());
-                quote!(::wrinkle_runtime::series::recurrence::square(#a, k))
+                let a = slot(a).unwrap();
+                quote!(::wrinkle_runtime::series::recurrence::square(tape, stride, #a, k))
             }
             Instruction::Divide(a, b) => {
                 let a = value_of(a);
-                let (b, c) = (history(slot(b).unwrap()), history(slot(index).unwrap()));
-                quote!(::wrinkle_runtime::series::recurrence::quotient(#a, #b, #c, k))
+                let (b, c) = (slot(b).unwrap(), slot(index).unwrap());
+                quote!(::wrinkle_runtime::series::recurrence::quotient(#a, tape, stride, #b, #c, k))
             }
             Instruction::Reciprocal(a) => {
-                let (b, r) = (history(slot(a).unwrap()), history(slot(index).unwrap()));
-                quote!(::wrinkle_runtime::series::recurrence::reciprocal(#b, #r, k))
+                let (b, r) = (slot(a).unwrap(), slot(index).unwrap());
+                quote!(::wrinkle_runtime::series::recurrence::reciprocal(tape, stride, #b, #r, k))
             }
         };
         predict.extend(quote!(let #x: f64 = #value;));
         if let Some(s) = slot(index) {
-            predict.extend(quote!(tape[#s * stride + k] = #x;));
+            predict.extend(quote!(tape[k * stride + #s] = #x;));
         }
     }
     let outputs = program
@@ -493,7 +488,7 @@ pub(crate) fn generate(program: &TaylorProgram, writer: &KernelWriter<'_>) -> Ta
     let mut commit = TokenStream::new();
     let order0 = |register: usize| {
         let s = slot(register).expect("operands of nonlinear operations are on the tape");
-        quote!(tape[#s * stride])
+        quote!(tape[#s])
     };
     for (index, instruction) in program.instructions.iter().enumerate() {
         let d = delta_name(index);
@@ -543,7 +538,7 @@ pub(crate) fn generate(program: &TaylorProgram, writer: &KernelWriter<'_>) -> Ta
         };
         commit.extend(quote!(let #d: f64 = #value;));
         if let Some(s) = slot(index) {
-            commit.extend(quote!(tape[#s * stride + k] += #d;));
+            commit.extend(quote!(tape[k * stride + #s] += #d;));
         }
     }
 

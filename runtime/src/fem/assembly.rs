@@ -449,7 +449,7 @@ impl<M: EnergyModel> Assembler<M> {
     /// (terms whose residual is affine in the jet contribute nothing to right-hand sides of
     /// order ≥ 1 and get no tape). Its size is [`TaylorTape::bytes`].
     pub fn taylor_tape(&self, highest_order: usize) -> TaylorTape {
-        let stride = highest_order + 1;
+        let orders = highest_order + 1;
         let spec = M::SPEC;
         let mut layout = Vec::new();
         let mut element_len = 0;
@@ -464,10 +464,10 @@ impl<M: EnergyModel> Assembler<M> {
                 slots: term_spec.taylor_slots,
                 offset: element_len,
             });
-            element_len += points * term_spec.taylor_slots * stride;
+            element_len += points * term_spec.taylor_slots * orders;
         }
         TaylorTape {
-            stride,
+            orders,
             layout,
             element_len,
             data: vec![0.0; element_len * self.mesh.elements.len()],
@@ -507,21 +507,21 @@ impl<M: EnergyModel> Assembler<M> {
     /// the true order-$`k`$ coefficients for the order-$`k`$ global nodal values `increment`
     /// (prescribed entries included, see [`DofMap::expand_increment`]).
     pub fn taylor_commit(&self, order: usize, increment: &[f64], tape: &mut TaylorTape) {
-        assert!(order >= 1 && order < tape.stride, "order outside the tape");
+        assert!(order >= 1 && order < tape.orders, "order outside the tape");
         self.taylor_sweep(increment, tape, |t, jet, block, stride| {
             self.model.taylor_commit(t, order, jet, block, stride)
         });
     }
 
     /// Calls `kernel(term, jet, point's tape, stride)` at every point of every taped term with
-    /// the jet of `global`.
+    /// the jet of `global` (see [`TaylorTape`] for the layout).
     fn taylor_sweep(
         &self,
         global: &[f64],
         tape: &mut TaylorTape,
         kernel: impl Fn(usize, &[f64], &mut [f64], usize) + Sync + Send,
     ) {
-        let stride = tape.stride;
+        let orders = tape.orders;
         let layout = tape.layout.clone();
         self.for_each_tape_block(tape, |e, block| {
             let local = self.gather(e, global);
@@ -530,16 +530,12 @@ impl<M: EnergyModel> Assembler<M> {
                 let term = &self.terms[entry.term];
                 let values = &self.value_sets[term.value_set].1[e];
                 let m = term.jet.len();
-                let per_point = entry.slots * stride;
+                let per_point = entry.slots * orders;
                 for q in 0..values.weights.len() {
                     self.jet_at(term, values, q, &local, &mut jet[..m]);
                     let start = entry.offset + q * per_point;
-                    kernel(
-                        entry.term,
-                        &jet[..m],
-                        &mut block[start..start + per_point],
-                        stride,
-                    );
+                    let point = &mut block[start..start + per_point];
+                    kernel(entry.term, &jet[..m], point, entry.slots);
                 }
             }
         });
@@ -549,7 +545,7 @@ impl<M: EnergyModel> Assembler<M> {
     /// the free dofs when the order-$`k`$ unknowns are zero — minus the ANM right-hand side —
     /// from orders $`0..k-1`$ on the tape ([`EnergyModel::taylor_predict`]).
     pub fn taylor_predict(&self, order: usize, tape: &mut TaylorTape) -> Vec<f64> {
-        assert!(order >= 1 && order < tape.stride, "order outside the tape");
+        assert!(order >= 1 && order < tape.orders, "order outside the tape");
         self.taylor_commit_and_predict(order, None, tape)
     }
 
@@ -565,7 +561,7 @@ impl<M: EnergyModel> Assembler<M> {
         tape: &mut TaylorTape,
     ) -> Vec<f64> {
         assert!(
-            order >= 1 && order + 1 < tape.stride,
+            order >= 1 && order + 1 < tape.orders,
             "order outside the tape"
         );
         self.taylor_commit_and_predict(order + 1, Some((order, increment)), tape)
@@ -581,7 +577,7 @@ impl<M: EnergyModel> Assembler<M> {
     ) -> Vec<f64> {
         let nf = self.dofs.field_count;
         let local_len = QUAD8_NODES * nf;
-        let stride = tape.stride;
+        let orders = tape.orders;
         let layout = tape.layout.clone();
         let mut element_forces = vec![0.0; self.mesh.elements.len() * local_len];
         if tape.element_len > 0 {
@@ -593,24 +589,25 @@ impl<M: EnergyModel> Assembler<M> {
                     let term = &self.terms[entry.term];
                     let values = &self.value_sets[term.value_set].1[e];
                     let m = term.jet.len();
-                    let per_point = entry.slots * stride;
+                    let per_point = entry.slots * orders;
                     for q in 0..values.weights.len() {
                         let start = entry.offset + q * per_point;
+                        let point = &mut block[start..start + per_point];
                         if let (Some((committed, _)), Some(local)) = (commit, &local) {
                             self.jet_at(term, values, q, local, &mut jet[..m]);
                             self.model.taylor_commit(
                                 entry.term,
                                 committed,
                                 &jet[..m],
-                                &mut block[start..start + per_point],
-                                stride,
+                                point,
+                                entry.slots,
                             );
                         }
                         self.model.taylor_predict(
                             entry.term,
                             order,
-                            &mut block[start..start + per_point],
-                            stride,
+                            point,
+                            entry.slots,
                             &mut residual[..m],
                         );
                         let w = values.weights[q];
@@ -756,11 +753,20 @@ struct TapeBlock {
 }
 
 /// Per-quadrature-point tapes of the Taylor-mode kernels for one path-following step: for every
-/// element, every nonlinear term and every quadrature point, the coefficient history
-/// ([`TermSpec::taylor_slots`](crate::model::TermSpec) slots × (highest order + 1)).
+/// element, every nonlinear term and every quadrature point, the coefficient history of
+/// [`TermSpec::taylor_slots`](crate::model::TermSpec) slots per order up to the highest.
+///
+/// **Layout**: per element, term and quadrature point, one row of slots per order
+/// (`[point][order][slot]`, `stride` = slots; see [`EnergyModel::taylor_start`]). Order $`k`$
+/// reads a contiguous prefix of each point's block — rows $`0..k`$ — and writes row $`k`$, so
+/// a sweep streams only the part of the tape that the order needs. (With slots first, as
+/// before, every order touched every slot's cache lines: the series took 15 % longer at
+/// 40 × 20 and 104 × 52. Rows interleaving an element's points, `[order][point][slot]`,
+/// spread the cache misses over every product and took 80 % longer.)
 #[derive(Clone, Debug)]
 pub struct TaylorTape {
-    stride: usize,
+    /// Rows per point: the highest order + 1.
+    orders: usize,
     layout: Vec<TapeBlock>,
     element_len: usize,
     data: Vec<f64>,
@@ -773,7 +779,7 @@ impl TaylorTape {
     }
     /// Highest order the tape holds.
     pub fn highest_order(&self) -> usize {
-        self.stride - 1
+        self.orders - 1
     }
 }
 
