@@ -47,6 +47,8 @@ pub enum Instruction {
     SubtractFromReal(usize, NodeId),
     /// $`-a`$.
     Negate(usize),
+    /// $`a + a`$ (exact, so a product can read the history of $`a`$ instead).
+    Double(usize),
     /// $`a\,c`$.
     Scale(usize, NodeId),
     /// $`a / c`$.
@@ -165,6 +167,7 @@ impl TaylorProgram {
                 | Instruction::SubtractReal(a, _)
                 | Instruction::SubtractFromReal(a, _)
                 | Instruction::Negate(a)
+                | Instruction::Double(a)
                 | Instruction::Scale(a, _)
                 | Instruction::DivideByReal(a, _) => zero_in_prediction[a],
                 _ => false,
@@ -258,6 +261,9 @@ impl Builder<'_> {
                 other => unreachable!("a jet-dependent leaf is a jet entry, not {other:?}"),
             },
             Operation::Add(a, b) => match (series(self, a), series(self, b)) {
+                (true, true) if r(self, a) == r(self, b) => {
+                    self.push(Instruction::Double(r(self, a)))
+                }
                 (true, true) => self.push(Instruction::Add(r(self, a), r(self, b))),
                 (true, false) => self.push(Instruction::AddReal(r(self, a), b)),
                 _ => self.push(Instruction::AddReal(r(self, b), a)),
@@ -315,12 +321,14 @@ impl Builder<'_> {
     }
 
     /// `register` without its constant scalings: the innermost register and the scalings
-    /// (`Scale`, `DivideByReal`, `Negate`) that give `register` from it, innermost first.
+    /// (`Scale`, `DivideByReal`, `Negate`, `Double`) that give `register` from it, innermost
+    /// first.
     fn peel(&self, mut register: usize) -> (usize, Vec<Instruction>) {
         let mut scalings = Vec::new();
         while let scaling @ (Instruction::Scale(inner, _)
         | Instruction::DivideByReal(inner, _)
-        | Instruction::Negate(inner)) = self.instructions[register]
+        | Instruction::Negate(inner)
+        | Instruction::Double(inner)) = self.instructions[register]
         {
             scalings.push(scaling);
             register = inner;
@@ -345,6 +353,7 @@ impl Builder<'_> {
             product = self.push(match scaling {
                 Instruction::Scale(_, c) => Instruction::Scale(product, c),
                 Instruction::DivideByReal(_, c) => Instruction::DivideByReal(product, c),
+                Instruction::Double(_) => Instruction::Double(product),
                 _ => Instruction::Negate(product),
             });
         }
@@ -396,6 +405,7 @@ pub(crate) fn generate(program: &TaylorProgram, writer: &KernelWriter<'_>) -> Ta
                 let a = register_name(a);
                 quote!(-#a)
             }
+            Instruction::Double(a) => binary(a, quote!(+), a),
             Instruction::Reciprocal(a) => {
                 let a = register_name(a);
                 quote!(1.0 / #a)
@@ -439,6 +449,10 @@ pub(crate) fn generate(program: &TaylorProgram, writer: &KernelWriter<'_>) -> Ta
             Instruction::SubtractFromReal(a, _) | Instruction::Negate(a) => {
                 let a = value_of(a);
                 quote!(-#a)
+            }
+            Instruction::Double(a) => {
+                let a = value_of(a);
+                quote!(#a + #a)
             }
             Instruction::Scale(a, c) => {
                 let (a, c) = (value_of(a), real(c));
@@ -510,6 +524,10 @@ pub(crate) fn generate(program: &TaylorProgram, writer: &KernelWriter<'_>) -> Ta
             Instruction::SubtractFromReal(a, _) | Instruction::Negate(a) => {
                 let a = dn(a);
                 quote!(-#a)
+            }
+            Instruction::Double(a) => {
+                let a = dn(a);
+                quote!(#a + #a)
             }
             Instruction::Scale(a, c) => {
                 let (a, c) = (dn(a), real(c));
