@@ -8,7 +8,7 @@
 //! mode $`\varphi`$, with the physical amplitude `solver.perturbation`·h on the unloaded
 //! sheet — and the path is traced from the
 //! equilibrium at $`\lambda = 0`$ with the ANM or Riks. The solver never writes files: a
-//! [`PathRecorder`] keeps what the outputs need, and [`crate::run_outputs`] writes them.
+//! `PathRecorder` keeps what the outputs need, and [`crate::run_outputs`] writes them.
 
 use crate::Error;
 use crate::output::{PathPoint, Progress, ProgressSink, ProgressTarget, Quantity};

@@ -92,7 +92,7 @@ pub struct Threshold {
     pub buckling: LinearBuckling,
     /// Strong ellipticity at the threshold.
     pub ellipticity: EllipticityReport,
-    /// Load the buckling analysis linearised about (0, or a shift, see [`robust_buckling`]).
+    /// Load the buckling analysis linearised about (0, or a shift, see `robust_buckling`).
     pub reference_load: f64,
     /// Wavenumber $`Q`$ (1/mm) of an envelope model.
     pub wavenumber: Option<f64>,

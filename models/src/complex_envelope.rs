@@ -1,10 +1,10 @@
 //! Complex-envelope model with mean deflection: THEORY.md §6, the paper's eqs (35)–(39).
 //!
-//! Unknowns, in dof order, with their roles: in-plane displacement `u` [displacement_x],
-//! `v` [displacement_y]; the mean (zeroth-harmonic) deflection `w0` [mean_deflection] with its
-//! Reissner–Mindlin rotations `theta_x` [rotation_x], `theta_y` [rotation_y]; the complex
-//! envelope of the first harmonic $`w_1 = a + i b`$, `a` [envelope_real], `b`
-//! [envelope_imaginary] (the paper's ansatz $`u_1 = 0`$, $`N_1 = 0`$). The physical deflection is
+//! Unknowns, in dof order, with their roles: in-plane displacement `u` `[displacement_x]`,
+//! `v` `[displacement_y]`; the mean (zeroth-harmonic) deflection `w0` `[mean_deflection]` with its
+//! Reissner–Mindlin rotations `theta_x` `[rotation_x]`, `theta_y` `[rotation_y]`; the complex
+//! envelope of the first harmonic $`w_1 = a + i b`$, `a` `[envelope_real]`, `b`
+//! `[envelope_imaginary]` (the paper's ansatz $`u_1 = 0`$, $`N_1 = 0`$). The physical deflection is
 //! $$`w(\mathbf X) = w_0 + 2\,\mathrm{Re}\!\left(w_1\, e^{iQ\,\mathbf{e}\cdot\mathbf X}\right),`$$
 //! amplitude $`2|w_1|`$, with the wave direction $`\mathbf e = (\cos\theta, \sin\theta)`$
 //! (parameter `direction` $`=\theta`$, radians from X) and $`\mathbf e^\perp = (-\sin\theta,

@@ -3,9 +3,9 @@
 //! The project's "full model": it resolves every wrinkle, and is the reference the envelope
 //! models are checked against.
 //!
-//! Unknowns, in dof order, with the role each field plays: `u` [displacement_x], `v`
-//! [displacement_y] the in-plane displacements, `w` [deflection], `theta_x` [rotation_x] and
-//! `theta_y` [rotation_y] the rotations, i.e. the slopes of the normal,
+//! Unknowns, in dof order, with the role each field plays: `u` `[displacement_x]`, `v`
+//! `[displacement_y]` the in-plane displacements, `w` `[deflection]`, `theta_x` `[rotation_x]` and
+//! `theta_y` `[rotation_y]` the rotations, i.e. the slopes of the normal,
 //! $`\boldsymbol\theta \approx \nabla w`$ (**sign convention**: $`\theta_x`$ is the slope
 //! $`\partial w/\partial X`$ in the Kirchhoff limit, so a positive $`\theta_x`$ turns the normal
 //! toward $`+X`$; it is a rotation about $`-Y`$).

@@ -2,7 +2,7 @@
 //! that lets the CLI pick one by name while every solver stays monomorphised per model.
 //!
 //! **Adding a model** is one new file in this directory (an `energy_model!` declaration with
-//! field roles) plus one line in the [`registry!`] invocation below: the catalogue, the dispatch
+//! field roles) plus one line in the `registry!` invocation below: the catalogue, the dispatch
 //! by name, `wrinkle models`, and the kernel cross-checks of `tests/every_model_kernels.rs`
 //! (generated kernels against dual numbers and finite differences) all follow from that line.
 

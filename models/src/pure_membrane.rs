@@ -1,8 +1,8 @@
 //! Pure membrane model: THEORY.md §5, the paper's eqs (33)–(34).
 //!
 //! The reference envelope model (THEORY.md §4) with every derivative of the envelope dropped.
-//! Unknowns: in-plane displacement `u` [displacement_x], `v` [displacement_y] and the real
-//! envelope `w` [envelope] (physical deflection $`2w\cos(Q\,\mathbf e\cdot\mathbf X)`$), wave
+//! Unknowns: in-plane displacement `u` `[displacement_x]`, `v` `[displacement_y]` and the real
+//! envelope `w` `[envelope]` (physical deflection $`2w\cos(Q\,\mathbf e\cdot\mathbf X)`$), wave
 //! direction $`\mathbf e = (\cos\theta, \sin\theta)`$ (parameter `direction` $`=\theta`$):
 //! $$`\gamma = \varepsilon(u) + Q^2 w^2\,\mathbf e\otimes\mathbf e,\qquad
 //! \psi = \tfrac12\gamma\cdot L_m\gamma + D Q^4 w^2,`$$

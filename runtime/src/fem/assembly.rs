@@ -1,7 +1,7 @@
 //! Assembly of energy, residual and tangent from a model's generated kernels.
 //!
 //! The assembler knows nothing about the model beyond the kernel contract
-//! ([`EnergyModel`](crate::model::EnergyModel)): it evaluates each term's jet at that term's
+//! ([`EnergyModel`]): it evaluates each term's jet at that term's
 //! quadrature points, calls the term kernels, and scatters
 //! $$`R_a = \sum_e \sum_q w_q \sum_i r_i(\mathbf{j}_q)\, B_{i a},\qquad
 //! K_{ab} = \sum_e \sum_q w_q \sum_{ij} k_{ij}(\mathbf{j}_q)\, B_{i a} B_{j b},`$$

@@ -85,7 +85,7 @@ pub struct AnmOptions {
     /// Warm start of those eigen-solves (e.g. the critical mode of a linear buckling analysis).
     pub bifurcation_mode_guess: Option<Vec<f64>>,
     /// A guess of the bifurcation load ahead (e.g. the linear buckling threshold): the
-    /// prediction's eigen-solve is then shifted towards it (see [`predict_bifurcation`]).
+    /// prediction's eigen-solve is then shifted towards it (see `predict_bifurcation`).
     pub bifurcation_load_guess: Option<f64>,
     /// Cap on the path parameter of one step; when the series is exactly polynomial (no
     /// finite range) the step uses this value, or 1 if it is infinite.

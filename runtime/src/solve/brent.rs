@@ -157,7 +157,7 @@ const MAX_BRACKETING_MOVES: usize = 6;
 ///
 /// On a smooth minimum this takes four or five evaluations where Brent's method, which must
 /// shrink the bracket itself below the tolerance, takes eight or nine. Returns `Ok(None)` when
-/// the minimum could not be bracketed within [`MAX_BRACKETING_MOVES`] moves, when an
+/// the minimum could not be bracketed within `MAX_BRACKETING_MOVES` moves, when an
 /// evaluation is not finite (the caller then falls back to a global search), or when the
 /// inputs are not finite; `converged = false` when the budget `max_evaluations` ran out after
 /// bracketing. A failing evaluation aborts and returns its error.
