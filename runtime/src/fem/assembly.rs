@@ -270,19 +270,19 @@ impl<M: EnergyModel> Assembler<M> {
         }
     }
 
-    /// Adds the field-major element vector `element` (`element[f][k]`, see [`Self::gather`])
-    /// into `sink` at the free dofs of element `e` (local dof `k * field_count + f`).
+    /// Calls `add(dof, value)` for each entry of the element vector `fields` (by field,
+    /// `fields[f][k]`, see [`Self::gather`]) that sits on a free dof of element `e`, in the
+    /// element's local dof order (node `k`, then field `f`).
     #[inline]
     fn for_each_free_dof<S: Scalar>(
         &self,
         e: usize,
-        element: &ElementLocal<S>,
+        fields: &[[S; QUAD8_NODES]],
         mut add: impl FnMut(usize, S),
     ) {
-        let nf = self.dofs.field_count;
         let mut dofs = self.element_dofs[e].iter();
         for k in 0..QUAD8_NODES {
-            for field in &element[..nf] {
+            for field in &fields[..self.dofs.field_count] {
                 if let Some(Some(i)) = dofs.next() {
                     add(*i, field[k]);
                 }
@@ -637,17 +637,11 @@ impl<M: EnergyModel> Assembler<M> {
             }
         }
         // Scatter in element order: the same sums for any thread count. Element forces are by
-        // field (`forces[f * 8 + k]`), local dofs by node (`k * nf + f`).
+        // field (`forces[f * 8 + k]`).
         let mut out = vec![0.0; self.dofs.free_count];
         for (e, forces) in element_forces.chunks(local_len).enumerate() {
-            let mut dofs = self.element_dofs[e].iter();
-            for k in 0..QUAD8_NODES {
-                for field in forces.chunks_exact(QUAD8_NODES) {
-                    if let Some(Some(i)) = dofs.next() {
-                        out[*i] += field[k];
-                    }
-                }
-            }
+            let (fields, _) = forces.as_chunks::<QUAD8_NODES>();
+            self.for_each_free_dof(e, fields, |i, value| out[i] += value);
         }
         out
     }
