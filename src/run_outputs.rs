@@ -765,6 +765,7 @@ fn summary_json(context: &RunContext, trace: &Trace, outcome: &RunOutcome) -> se
             "step": s.step, "load_start": s.load_range.0, "load_end": s.load_range.1, "step_length": s.step_length,
             "series_step_length": s.series_step_length, "pade_step_length": s.pade_step_length,
             "end_residual": s.end_residual, "correction_iterations": s.correction_iterations,
+            "crossings_redone": s.crossings_redone,
             "geometric_radius": s.geometric_radius, "predicted_bifurcation": s.predicted_bifurcation,
             "negative_pivots": s.negative_pivots, "completed": s.completed,
         })).collect::<Vec<_>>(),

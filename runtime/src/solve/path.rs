@@ -84,7 +84,8 @@ pub struct PathStatistics {
     pub series_assemblies: usize,
     /// Newton corrections applied (ANM) / Newton iterations (Riks).
     pub corrections: usize,
-    /// Rejected step attempts (step halved).
+    /// Rejected step-end attempts: ends halved or shortened towards the series' range, and
+    /// steps redone after jumping over a critical point (ANM); halved steps (Riks).
     pub rejected_steps: usize,
     /// Seconds in tangent assembly.
     pub assembly_seconds: f64,
