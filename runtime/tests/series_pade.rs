@@ -299,3 +299,40 @@ fn construction_rejects_short_or_inconsistent_series() {
         Err(SeriesError::InconsistentOrders { .. })
     ));
 }
+
+/// A pole with a negligible residue (relative residue ρ = |R| / (a_p² |V_1|) far below
+/// 1e-6 ε, a Froissart-like doublet) disturbs the approximant only in a tiny window around it
+/// and does not bound the Padé range; the same pole with a real residue does.
+#[test]
+fn a_pole_with_a_negligible_residue_does_not_bound_the_pade_range() {
+    let path = |residue_scale: f64| RationalPath {
+        origin: vec![1.0, -0.5, 2.0, 1.0],
+        poles: vec![
+            (0.7, vec![1.0, -0.5, 2.0, 0.4]),
+            (0.3, vec![0.0, residue_scale, 0.0, residue_scale]),
+        ],
+        linear: vec![0.3, 1.0, -0.2, 0.8],
+    };
+    let epsilon = 1e-6;
+
+    // ρ ≈ 1e-14 / (0.3 · 3.7) ≈ 1e-14, below 1e-6 ε = 1e-12: not a bound.
+    let spurious = path(1e-14);
+    let pade = PadeApproximant::new(&spurious.series(16)).unwrap();
+    let pole = pade.smallest_positive_pole().expect("the doublet is seen");
+    assert!((pole - 0.3).abs() < 1e-6, "{pole}");
+    let step = pade.pade_step_length(epsilon);
+    assert!((step - 0.9 * 0.7).abs() < 1e-9, "{step}");
+    for a in [0.1, 0.5, 0.6] {
+        let exact = spurious.exact(a);
+        let error = distance(&combined(pade.evaluate(a)), &exact) / norm(&exact);
+        assert!(error < 1e-9, "a = {a}: {error}");
+    }
+
+    // The same pole with a residue 1e-3 of the other's bounds the step.
+    let genuine = path(1e-3);
+    let pade = PadeApproximant::new(&genuine.series(16)).unwrap();
+    let pole = pade.smallest_positive_pole().unwrap();
+    assert!((pole - 0.3).abs() < 1e-8, "{pole}");
+    let step = pade.pade_step_length(epsilon);
+    assert!(step <= 0.9 * 0.3 + 1e-12, "{step}");
+}

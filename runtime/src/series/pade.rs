@@ -27,6 +27,11 @@ const UNBOUNDED_RANGE: f64 = 1e8;
 /// Number of bisection steps refining the step length (at most).
 const BISECTION_STEPS: usize = 60;
 
+/// A pole of $`P_N`$ whose relative residue $`\rho`$ is below this times the series tolerance
+/// does not bound the Padé range
+/// ([`PadeApproximant::pade_step_length_with_pole_safety`]).
+pub const SPURIOUS_RESIDUE: f64 = 1e-6;
+
 /// Relative width of the bracket at which the bisection stops. The criterion is a
 /// heuristic error estimate: a step 0.1 % shorter than its exact crossing changes nothing, and
 /// each bisection step costs two evaluations of the approximants: from the scan's bracket
@@ -189,9 +194,22 @@ impl PadeApproximant {
     /// The largest $`a`$ found such that
     /// ```math
     /// \lVert P_N(a) - P_{N-1}(a) \rVert \le \varepsilon\, \lVert P_N(a) - V_0 \rVert ,
-    /// \qquad a \le s \cdot (\text{first positive pole of } D_{N-1}),
+    /// \qquad a \le s \cdot (\text{first genuine positive pole of } D_{N-1}),
     /// ```
     /// with the safety factor $`s \in (0, 1]`$ and norms including the load component.
+    ///
+    /// **Genuine poles.** Near a real root $`a_p`$ of $`D_{N-1}`$,
+    /// $`P_N(a) \approx R/(a - a_p)`$ with the residue
+    /// $`R = \sum_k a_p^k D_{N-1-k}(a_p)\,V_k / D_{N-1}'(a_p)`$. At a relative distance
+    /// $`\eta`$ from the pole it moves $`P_N`$ by $`\rho/\eta`$ relative to the step's scale
+    /// $`a_p \lVert V_1 \rVert`$, with $`\rho = \lVert R\rVert / (a_p^2 \lVert V_1\rVert)`$.
+    /// A pole with $`\rho <`$ [`SPURIOUS_RESIDUE`]$`\,\varepsilon`$ (a Froissart doublet: a
+    /// numerator root beside the denominator's) disturbs $`P_N`$ by more than $`\varepsilon`$
+    /// only within $`10^{-6}`$ of its position; it does not bound the range. Such poles
+    /// limited steps of the knee of example 1 and of the strip of example 2 with
+    /// $`\rho \approx 10^{-17}`$–$`10^{-14}`$, where the bounding poles had $`\rho`$ from
+    /// $`10^{-3}`$ to $`10^{-1}`$. An evaluation that happens to fall in that window fails the
+    /// caller's residual check (the step end is then shortened, an interior point dropped).
     ///
     /// Only the poles of $`P_N`$, the approximant a step evaluates, bound the range. A pole of
     /// the lower approximant $`P_{N-1}`$ does not: near it the difference blows up and the scan
@@ -217,7 +235,10 @@ impl PadeApproximant {
         if !(valid_epsilon && valid_safety) {
             return 0.0;
         }
-        let first_pole = smallest_positive_root(&self.denominator).unwrap_or(f64::INFINITY);
+        let first_pole = positive_real_roots(&self.denominator)
+            .into_iter()
+            .find(|&pole| self.relative_residue(pole) >= SPURIOUS_RESIDUE * epsilon)
+            .unwrap_or(f64::INFINITY);
         let upper = pole_safety * first_pole;
         let accepted = |parameter: f64| self.relative_difference(parameter) <= epsilon;
 
@@ -288,6 +309,27 @@ impl PadeApproximant {
             }
         }
         low
+    }
+
+    /// $`\rho = \lVert R\rVert / (a_p^2 \lVert V_1\rVert)`$ of the pole `pole` of $`P_N`$
+    /// ([`PadeApproximant::pade_step_length_with_pole_safety`]); $`+\infty`$ when it cannot be
+    /// computed (a multiple root, a zero first-order term), so that the pole counts.
+    fn relative_residue(&self, pole: f64) -> f64 {
+        let degree = self.denominator.len() - 1;
+        let (partial, slope) = partial_denominators(&self.denominator, pole);
+        let mut numerator = vec![0.0; self.origin.len()];
+        let mut power = 1.0;
+        for k in 1..=degree {
+            power *= pole;
+            let weight = power * partial[degree - k];
+            for (target, value) in numerator.iter_mut().zip(&self.coefficients[k - 1]) {
+                *target += weight * value;
+            }
+        }
+        let norm = |vector: &[f64]| vector.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let scale = slope[degree].abs() * pole * pole * norm(&self.coefficients[0]);
+        let rho = norm(&numerator) / scale;
+        if rho.is_finite() { rho } else { f64::INFINITY }
     }
 
     /// $`\lVert P_N(a) - P_{N-1}(a)\rVert / \lVert P_N(a) - V_0\rVert`$ (NaN-safe: a
@@ -451,18 +493,25 @@ fn polynomial_derivative(coefficients: &[f64], parameter: f64) -> f64 {
 /// $`\sigma = \max_i |c_i|^{1/i}`$ (within a factor $`m`$ of the largest root modulus), the
 /// companion matrix of the $`t`$-polynomial has entries of modulus at most one.
 fn smallest_positive_root(coefficients: &[f64]) -> Option<f64> {
-    let mut degree = coefficients.len().checked_sub(1)?;
+    positive_real_roots(coefficients).first().copied()
+}
+
+/// The positive real roots of $`D`$ ([`smallest_positive_root`]), ascending.
+fn positive_real_roots(coefficients: &[f64]) -> Vec<f64> {
+    let Some(mut degree) = coefficients.len().checked_sub(1) else {
+        return Vec::new();
+    };
     while degree > 0 && coefficients[degree] == 0.0 {
         degree -= 1;
     }
     if degree == 0 || coefficients.iter().any(|value| !value.is_finite()) {
-        return None;
+        return Vec::new();
     }
     let scale = (1..=degree)
         .map(|i| coefficients[i].abs().powf(1.0 / i as f64))
         .fold(0.0, f64::max);
     if !(scale > 0.0 && scale.is_finite()) {
-        return None;
+        return Vec::new();
     }
     let mut companion = DMatrix::<f64>::zeros(degree, degree);
     let mut factor = 1.0;
@@ -482,13 +531,13 @@ fn smallest_positive_root(coefficients: &[f64]) -> Option<f64> {
             .collect(),
         None => sign_change_roots(&coefficients[..=degree], 1.0 / (2.0 * scale)),
     };
-    candidates
+    let mut roots: Vec<f64> = candidates
         .into_iter()
         .map(|root| polish_root(&coefficients[..=degree], root))
         .filter(|root| root.is_finite() && *root > 0.0)
-        .fold(None, |smallest: Option<f64>, root| {
-            Some(smallest.map_or(root, |value| value.min(root)))
-        })
+        .collect();
+    roots.sort_by(f64::total_cmp);
+    roots
 }
 
 /// Newton polishing; keeps the original value if Newton wanders off.
