@@ -218,6 +218,7 @@ impl PadeApproximant {
     /// example 1 (40 × 20) stopped at 0.0024, 0.9 times a pole of $`D_{N-2}`$, where $`P_N`$
     /// meets the criterion up to 0.0096 with a relative residual of 3e-8 there: the path took
     /// 11 steps instead of 9. The caller checks the residual at the step's end.
+    ///
     /// Search: start at the series step length [`series_step_length`](super::series_step_length); if the criterion
     /// holds there, grow by a factor 1.1 until it fails or the pole bound is reached,
     /// otherwise halve until it holds; then bisect the bracket. The criterion is not

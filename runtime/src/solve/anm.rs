@@ -127,8 +127,9 @@ pub struct AnmStep {
     /// Range the plain series allowed (for comparison with Padé).
     pub series_step_length: f64,
     /// Range Padé allowed (when enabled). The step used it when `step_length` exceeds
-    /// `series_step_length`; a Padé range that was longer but not used means the Padé end
-    /// jumped over a critical point and the step was redone with the series' range.
+    /// `series_step_length`; a Padé range longer than `step_length` means the Padé end missed
+    /// the residual tolerance and was shortened towards the series' range, or jumped over a
+    /// critical point and the step was redone with the series' range (`crossings_redone`).
     pub pade_step_length: Option<f64>,
     /// Relative residual at the accepted end point (after the correction, if any).
     pub end_residual: f64,
