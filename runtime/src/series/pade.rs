@@ -205,11 +205,14 @@ impl PadeApproximant {
     /// $`a_p \lVert V_1 \rVert`$, with $`\rho = \lVert R\rVert / (a_p^2 \lVert V_1\rVert)`$.
     /// A pole with $`\rho <`$ [`SPURIOUS_RESIDUE`]$`\,\varepsilon`$ (a Froissart doublet: a
     /// numerator root beside the denominator's) disturbs $`P_N`$ by more than $`\varepsilon`$
-    /// only within $`10^{-6}`$ of its position; it does not bound the range. Such poles
-    /// limited steps of the knee of example 1 and of the strip of example 2 with
-    /// $`\rho \approx 10^{-17}`$–$`10^{-14}`$, where the bounding poles had $`\rho`$ from
-    /// $`10^{-3}`$ to $`10^{-1}`$. An evaluation that happens to fall in that window fails the
-    /// caller's residual check (the step end is then shortened, an interior point dropped).
+    /// only within $`10^{-6}`$ of its position; it does not bound the range. On example 1 and
+    /// the 400 × 400 square the poles that bounded steps had either $`\rho = 0.025`$ (example
+    /// 1's first step, towards the bifurcation) or $`\rho \le 10^{-15}`$ (one knee step of
+    /// example 1, three of the square); the strip of
+    /// example 2 had four below $`10^{-13}`$ and four between $`10^{-11}`$ and
+    /// $`3 \cdot 10^{-7}`$, which still bound. An evaluation that happens to fall in the window
+    /// fails the caller's residual check (the step end is then shortened, an interior point
+    /// dropped).
     ///
     /// Only the poles of $`P_N`$, the approximant a step evaluates, bound the range. A pole of
     /// the lower approximant $`P_{N-1}`$ does not: near it the difference blows up and the scan
