@@ -153,17 +153,15 @@ impl PadeApproximant {
         let degree = self.denominator.len() - 1;
         let (partial, slope) = partial_denominators(&self.denominator, parameter);
         let (full, full_slope) = (partial[degree], slope[degree]);
-        let mut result = vec![0.0; self.origin.len()];
-        for k in 1..=degree {
+        let weights = (1..=degree).map(|k| {
             let (lower, lower_slope) = (partial[degree - k], slope[degree - k]);
             let power = parameter.powi(k as i32);
             let power_slope = k as f64 * parameter.powi(k as i32 - 1);
-            let weight = (power_slope * lower + power * lower_slope) / full
-                - power * lower * full_slope / (full * full);
-            for (target, value) in result.iter_mut().zip(&self.coefficients[k - 1]) {
-                *target += weight * value;
-            }
-        }
+            (power_slope * lower + power * lower_slope) / full
+                - power * lower * full_slope / (full * full)
+        });
+        let mut result = vec![0.0; self.origin.len()];
+        self.add_weighted(&mut result, weights);
         self.split(result)
     }
 
@@ -181,7 +179,7 @@ impl PadeApproximant {
     /// by the numerator is still reported (conservative).
     #[must_use]
     pub fn smallest_positive_pole(&self) -> Option<f64> {
-        smallest_positive_root(&self.denominator)
+        positive_real_roots(&self.denominator).first().copied()
     }
 
     /// [`PadeApproximant::pade_step_length_with_pole_safety`] with the safety factor
@@ -319,19 +317,18 @@ impl PadeApproximant {
     /// ([`PadeApproximant::pade_step_length_with_pole_safety`]); $`+\infty`$ when it cannot be
     /// computed (a multiple root, a zero first-order term), so that the pole counts.
     fn relative_residue(&self, pole: f64) -> f64 {
+        // The numerator of P_N - V_0 at the pole: the sum of `evaluate_combined` before its
+        // division by D_{N-1}.
         let degree = self.denominator.len() - 1;
         let (partial, slope) = partial_denominators(&self.denominator, pole);
         let mut numerator = vec![0.0; self.origin.len()];
-        let mut power = 1.0;
-        for k in 1..=degree {
-            power *= pole;
-            let weight = power * partial[degree - k];
-            for (target, value) in numerator.iter_mut().zip(&self.coefficients[k - 1]) {
-                *target += weight * value;
-            }
-        }
-        let norm = |vector: &[f64]| vector.iter().map(|x| x * x).sum::<f64>().sqrt();
-        let scale = slope[degree].abs() * pole * pole * norm(&self.coefficients[0]);
+        self.add_weighted(
+            &mut numerator,
+            powers(pole)
+                .zip(1..=degree)
+                .map(|(power, k)| power * partial[degree - k]),
+        );
+        let scale = slope[degree].abs() * pole * pole * self.coefficient_norms[1];
         let rho = norm(&numerator) / scale;
         if rho.is_finite() { rho } else { f64::INFINITY }
     }
@@ -363,15 +360,21 @@ impl PadeApproximant {
         let (partial, _) = partial_denominators(denominator, parameter);
         let full = partial[degree];
         let mut result = self.origin.clone();
-        let mut power = 1.0;
-        for k in 1..=degree {
-            power *= parameter;
-            let weight = power * partial[degree - k] / full;
-            for (target, value) in result.iter_mut().zip(&self.coefficients[k - 1]) {
+        let weights = powers(parameter)
+            .zip(1..=degree)
+            .map(|(power, k)| power * partial[degree - k] / full);
+        self.add_weighted(&mut result, weights);
+        result
+    }
+
+    /// `result` $`\mathrel{+}= \sum_k w_k V_k`$, with the weights of orders $`1, 2, \dots`$ in
+    /// turn (at most $`N`$ of them).
+    fn add_weighted(&self, result: &mut [f64], weights: impl Iterator<Item = f64>) {
+        for (weight, coefficient) in weights.zip(&self.coefficients) {
+            for (target, value) in result.iter_mut().zip(coefficient) {
                 *target += weight * value;
             }
         }
-        result
     }
 
     fn split(&self, mut combined: Vec<f64>) -> (Vec<f64>, f64) {
@@ -386,6 +389,11 @@ impl PadeApproximant {
 struct Projections {
     alpha: Vec<Vec<f64>>,
     independent: Vec<bool>,
+}
+
+/// $`a, a^2, a^3, \dots`$, each power the previous one times $`a`$.
+fn powers(parameter: f64) -> impl Iterator<Item = f64> {
+    std::iter::successors(Some(parameter), move |power| Some(power * parameter))
 }
 
 fn dot(left: &[f64], right: &[f64]) -> f64 {
@@ -490,17 +498,12 @@ fn polynomial_derivative(coefficients: &[f64], parameter: f64) -> f64 {
         })
 }
 
-/// Smallest positive real root of $`D(a) = \sum_{i=0}^{m} c_i a^i`$ with $`c_0 = 1`$.
+/// The positive real roots of $`D(a) = \sum_{i=0}^{m} c_i a^i`$ with $`c_0 = 1`$, ascending.
 ///
 /// The roots $`a`$ of $`D`$ are the inverses of the roots $`z`$ of the monic reversed
 /// polynomial $`z^m + c_1 z^{m-1} + \dots + c_m`$; with $`z = \sigma t`$,
 /// $`\sigma = \max_i |c_i|^{1/i}`$ (within a factor $`m`$ of the largest root modulus), the
 /// companion matrix of the $`t`$-polynomial has entries of modulus at most one.
-fn smallest_positive_root(coefficients: &[f64]) -> Option<f64> {
-    positive_real_roots(coefficients).first().copied()
-}
-
-/// The positive real roots of $`D`$ ([`smallest_positive_root`]), ascending.
 fn positive_real_roots(coefficients: &[f64]) -> Vec<f64> {
     let Some(mut degree) = coefficients.len().checked_sub(1) else {
         return Vec::new();
