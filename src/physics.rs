@@ -217,17 +217,39 @@ impl Snapshot<'_> {
     /// Maximum physical wrinkle amplitude (mm): the plate's largest nodal $`|w|`$, twice the
     /// largest nodal envelope modulus otherwise.
     pub fn max_amplitude(&self) -> f64 {
-        let nf = self.layout.field_count;
         let nodes = self.mesh.nodes.len();
-        let value = |n: usize, f: usize| self.values[n * nf + f];
         // NaN propagates: an overflowed state never reports a finite amplitude.
-        wrinkle_runtime::problem::max_or_nan((0..nodes).map(|n| match self.layout.kind {
-            DeflectionKind::Plate { deflection } => value(n, deflection).abs(),
-            DeflectionKind::RealEnvelope { envelope } => 2.0 * value(n, envelope).abs(),
+        wrinkle_runtime::problem::max_or_nan((0..nodes).map(|n| self.nodal_amplitude(n)))
+    }
+
+    /// Physical wrinkle amplitude (mm) at node `n`: $`|w|`$, $`2|w_\text{env}|`$ or $`2|w_1|`$.
+    fn nodal_amplitude(&self, n: usize) -> f64 {
+        let value = |f: usize| self.values[n * self.layout.field_count + f];
+        match self.layout.kind {
+            DeflectionKind::Plate { deflection } => value(deflection).abs(),
+            DeflectionKind::RealEnvelope { envelope } => 2.0 * value(envelope).abs(),
             DeflectionKind::ComplexEnvelope {
                 real, imaginary, ..
-            } => 2.0 * value(n, real).hypot(value(n, imaginary)),
-        }))
+            } => 2.0 * value(real).hypot(value(imaginary)),
+        }
+    }
+
+    /// Largest physical deflection $`|w|`$ (mm) over the nodes, taken over every phase of the
+    /// wrinkles: the plate's $`|w|`$, $`2|w_\text{env}|`$, or $`|w_0| + 2|w_1|`$ for the complex
+    /// envelope with its mean deflection $`w_0`$ (so it equals [`Self::max_amplitude`] unless
+    /// there is a mean deflection). A map sampled on a grid can miss a crest that falls between
+    /// two samples; this does not.
+    pub fn max_deflection(&self) -> f64 {
+        let mean = match self.layout.kind {
+            DeflectionKind::ComplexEnvelope { mean, .. } => mean,
+            _ => None,
+        };
+        let nf = self.layout.field_count;
+        wrinkle_runtime::problem::max_or_nan(
+            (0..self.mesh.nodes.len()).map(|n| {
+                mean.map_or(0.0, |m| self.values[n * nf + m].abs()) + self.nodal_amplitude(n)
+            }),
+        )
     }
 
     /// Local wrinkle amplitude (mm) at `centre` (see the module documentation); `wavelength`
@@ -367,6 +389,48 @@ mod tests {
         assert!((s.deflection(p) - expected).abs() < 1e-12);
         assert!((s.max_amplitude() - 2.0).abs() < 1e-12);
         assert!((s.local_wavenumber(p, 0.1).unwrap() - q).abs() < 1e-12);
+    }
+
+    /// A uniform complex envelope $`0.6 + 0.8i`$ on a uniform mean deflection $`w_0 = -0.3`$:
+    /// $`w = -0.3 + 2\cos(QX + \varphi)`$ reaches $`|w| = 2.3`$ at its troughs, while the wrinkle
+    /// amplitude stays 2. Samples every 1/16 of a wavelength approach 2.3 from below.
+    #[test]
+    fn max_deflection_of_a_complex_envelope_adds_the_mean_deflection() {
+        let mesh = Mesh::rectangle(10.0, 5.0, 4, 2, 1.0).unwrap();
+        let q = 2.3;
+        let layout = Layout::from_spec(ComplexEnvelope::SPEC).unwrap();
+        let values = nodal(&mesh, &layout, |f, _| match f {
+            2 => -0.3,
+            5 => 0.6,
+            6 => 0.8,
+            _ => 0.0,
+        });
+        let s = Snapshot {
+            mesh: &mesh,
+            layout: &layout,
+            values: &values,
+            wavenumber: q,
+            direction: 0.0,
+        };
+        assert!((s.max_amplitude() - 2.0).abs() < 1e-12);
+        assert!((s.max_deflection() - 2.3).abs() < 1e-12);
+        let step = 2.0 * std::f64::consts::PI / q / 16.0;
+        let sampled = (0..=(10.0 / step) as usize)
+            .map(|i| s.deflection([i as f64 * step, 2.5]).abs())
+            .fold(0.0, f64::max);
+        assert!(
+            sampled <= 2.3 + 1e-12
+                && sampled > 2.3 - 2.0 * (1.0 - (std::f64::consts::PI / 16.0).cos())
+        );
+        let plate = Layout::from_spec(FvkPlate::SPEC).unwrap();
+        let values = nodal(&mesh, &plate, |f, p| if f == 2 { p[0] - 7.0 } else { 0.0 });
+        let s = Snapshot {
+            layout: &plate,
+            values: &values,
+            ..s
+        };
+        assert_eq!(s.max_deflection(), s.max_amplitude());
+        assert!((s.max_deflection() - 7.0).abs() < 1e-12);
     }
 
     /// A plate deflection $`\sin(2\pi X/\ell)`$ sampled on a fine mesh: the wavelength read from

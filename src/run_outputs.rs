@@ -361,7 +361,8 @@ fn write_wrinkle_map(
             context.spec.name,
             context.load_quantity().format_value(trace.last.load)
         ),
-        &crate::output::WrinkleMap::new(field, 1e-2 * h, "10⁻² h"),
+        &crate::output::WrinkleMap::new(field, 1e-2 * h, "10⁻² h")
+            .with_peak(snapshot.max_deflection()),
     )
     .map_err(io_error(&stem))?;
     Ok((

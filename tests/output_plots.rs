@@ -304,6 +304,39 @@ fn wrinkle_map_has_a_labelled_colour_bar_and_keeps_the_aspect_ratio() {
     }
 }
 
+/// Samples 1 mm apart of a wave of 8 mm whose crests fall halfway between two samples miss
+/// them: the largest sample is $`0.2\cos(\pi/8) = 0.1848`$ instead of the amplitude 0.2. Given the exact peak (as `wrinkle run` gives the nodal maximum), the map states
+/// 0.2 mm, the number of the run's summary, and scales its colours to it.
+#[test]
+fn wrinkle_map_states_the_exact_peak_not_the_largest_sample() {
+    let dir = scratch_dir("peak");
+    let field = GridField::sample(
+        Quantity::deflection(),
+        [0.0, 400.0, 0.0, 200.0],
+        401,
+        101,
+        |x, _| 0.2 * (PI / 4.0 * x + PI / 8.0).cos(),
+    );
+    let sampled = field.max_abs();
+    assert!(
+        (sampled - 0.2 * (PI / 8.0).cos()).abs() < 1e-12,
+        "{sampled}"
+    );
+    let map = WrinkleMap::new(field.clone(), 5e-5, "10⁻³ h");
+    assert!(map.note().starts_with(&format!(
+        "max |w| = {} mm;",
+        wrinkle::output::quantity::format_significant(sampled, 4)
+    )));
+    let map = WrinkleMap::new(field, 5e-5, "10⁻³ h").with_peak(0.2);
+    assert_eq!(map.color_limit(), 0.2);
+    let output = plot_wrinkle_map(&dir.join("peak"), "Wrinkles", &map).unwrap();
+    assert!(
+        svg_text(&output).contains("max |w| = 0.2000 mm;"),
+        "{:?}",
+        output.layout.notes
+    );
+}
+
 #[test]
 fn a_flat_field_is_drawn_pale_and_said_not_wrinkled() {
     let dir = scratch_dir("flat");

@@ -29,6 +29,11 @@ pub struct WrinkleMap {
     pub x_axis: Quantity,
     /// Ordinate, default `Y (mm)`.
     pub y_axis: Quantity,
+    /// The field's largest $`|v|`$ when it is known exactly (e.g. the run's
+    /// $`\max|w| = \max(|w_0| + 2|A|)`$ at the nodes of an envelope model), so that the map states
+    /// the same number as the summary; `None`: the largest sample of `field`, which can miss a
+    /// crest that falls between two samples.
+    pub peak: Option<f64>,
 }
 
 impl WrinkleMap {
@@ -40,24 +45,36 @@ impl WrinkleMap {
             threshold_label: threshold_label.into(),
             x_axis: Quantity::coordinate("X"),
             y_axis: Quantity::coordinate("Y"),
+            peak: None,
         }
+    }
+
+    /// The same map with its exact largest $`|v|`$ ([`WrinkleMap::peak`]).
+    pub fn with_peak(mut self, peak: f64) -> Self {
+        self.peak = Some(peak);
+        self
+    }
+
+    /// The largest $`|v|`$: [`WrinkleMap::peak`] when known, the largest sample otherwise.
+    pub fn max_abs(&self) -> f64 {
+        self.peak.unwrap_or_else(|| self.field.max_abs())
     }
 
     /// Whether the largest $`|v|`$ is below the threshold.
     pub fn is_flat(&self) -> bool {
-        self.field.max_abs() < self.threshold
+        self.max_abs() < self.threshold
     }
 
     /// Half-range of the colour scale: $`\max(\max|v|, \text{threshold})`$ (1 if both vanish).
     pub fn color_limit(&self) -> f64 {
-        let limit = self.field.max_abs().max(self.threshold);
+        let limit = self.max_abs().max(self.threshold);
         if limit > 0.0 { limit } else { 1.0 }
     }
 
     /// The note written under the title.
     pub fn note(&self) -> String {
         let quantity = &self.field.quantity;
-        let max = self.field.max_abs();
+        let max = self.max_abs();
         let value = |v: f64, digits: usize| {
             let number = format_significant(v, digits);
             if quantity.unit.is_empty() {
