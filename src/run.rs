@@ -517,16 +517,19 @@ fn follow<M: EnergyModel>(
             follow_path_anm(problem, start, factor, &options, observer, anm_steps)
         }
         PathMethod::Riks => {
-            // Arc length in (U [mm], λ/λ_c), at most 1 % of the threshold per step: larger
-            // steps jump over the sharp turn of the perturbed branch at the threshold and
-            // converge back onto the unstable fundamental branch.
+            // A dimensionless arc length, in units of the linear response to λ_c (displacements)
+            // and of λ_c (load), so that the step count does not grow with the mesh; the steps
+            // adapt to the Newton iterations up to 0.3 of it. A step that converges past the
+            // sharp turn of the imperfect branch at the threshold, onto the unstable fundamental
+            // branch, is caught by the crossing guard (negative pivots at its end) and halved.
             let options = RiksOptions {
                 tolerance: scene.solver.tolerance,
                 max_steps: scene.solver.max_steps,
                 max_load,
+                reference_load: Some(critical_load).filter(|l| *l != 0.0 && l.is_finite()),
                 load_scale: 1.0 / critical_load.abs().max(f64::MIN_POSITIVE),
-                initial_arc_length: 0.01,
-                max_arc_length: 0.01,
+                initial_arc_length: 0.05,
+                max_arc_length: 0.3,
                 ..RiksOptions::default()
             };
             follow_path_riks(problem, start, factor, &options, observer)

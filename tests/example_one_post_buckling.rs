@@ -266,3 +266,60 @@ fn example_one_pade_and_plain_series_trace_the_same_curve_forward() {
     );
     assert!(compared >= 3, "{compared}");
 }
+
+/// Newton–Riks through a nearly perfect bifurcation (imperfection 1e-6 instead of 1e-4): the
+/// imperfect path turns sharply at λ_c, and steps of up to 0.3 of the linear response to λ_c
+/// converge past the turn onto the unstable fundamental branch (without the crossing guard the
+/// 32 × 16 path stayed there up to 600 λ_c). The guard sees the negative pivot at such a step's
+/// end and halves the step: the path reaches a/h = 2 on the ANM's curve (1 % at every Riks point
+/// past 1.01 λ_c), every point stable and at the residual tolerance.
+#[test]
+fn riks_through_a_nearly_perfect_bifurcation_stays_on_the_wrinkled_branch() {
+    let base = [
+        "mesh.nx=16",
+        "mesh.ny=8",
+        "solver.order=15",
+        "solver.perturbation=1e-6",
+        "solver.max_amplitude_over_h=2",
+        "output.plots=false",
+        "output.vtu=false",
+        "output.surface=false",
+    ];
+    let anm_dir = output_directory("near-perfect-anm");
+    let anm = run(&scene(&base), &anm_dir, true).unwrap();
+    assert!(anm.failure.is_none());
+    let mut settings = base.to_vec();
+    settings.push("solver.method=riks");
+    let riks_dir = output_directory("near-perfect-riks");
+    let riks = run(&scene(&settings), &riks_dir, true).unwrap();
+    assert!(
+        riks.failure.is_none(),
+        "{:?}",
+        riks.summary["outcome_reason"]
+    );
+    let lambda_c = riks.summary["linear_buckling_load"].as_f64().unwrap();
+    let points = path_of(&riks.summary);
+    let last = points.last().unwrap();
+    assert!(last.max_amplitude_over_h >= 2.0 && last.lambda < 1.25 * lambda_c);
+    assert!(points.iter().all(|p| p.residual <= 1e-6));
+    let rejected = riks.summary["statistics"]["rejected_steps"]
+        .as_u64()
+        .unwrap();
+    assert!(rejected >= 1, "the guard halved no step");
+    let compared = assert_on_curve(
+        points.iter().filter(|p| p.lambda > 1.01 * lambda_c),
+        &path_of(&anm.summary),
+        1e-2,
+        "Riks points on the ANM curve",
+    );
+    assert!(compared >= 3, "{compared}");
+    eprintln!(
+        "Riks: {} steps, {} rejected, {} factorisations; ANM {} steps",
+        riks.summary["steps"],
+        rejected,
+        riks.summary["statistics"]["factorizations"],
+        anm.summary["steps"]
+    );
+    let _ = std::fs::remove_dir_all(&anm_dir);
+    let _ = std::fs::remove_dir_all(&riks_dir);
+}

@@ -214,11 +214,12 @@ fn hardening_spring_path_is_exact_for_both_constraints() {
         let last = &points.last().unwrap().1;
         assert!(last.load >= 6.0);
         assert_eq!(result.last, *last);
-        // One predictor factorisation per step plus one per Newton iteration.
+        // The start's tangent, each accepted point's (the next step's predictor and the
+        // crossing guard's inertia), and one per Newton iteration.
         let statistics = &result.statistics;
         assert_eq!(
             statistics.factorizations,
-            statistics.steps + statistics.corrections
+            1 + statistics.steps + statistics.corrections
         );
         assert_eq!(statistics.tangent_assemblies, statistics.factorizations);
         assert!(statistics.corrections >= statistics.steps);
@@ -277,6 +278,90 @@ fn step_lengths_satisfy_the_arc_length_equation() {
     }
 }
 
+/// With `reference_load` the arc length is dimensionless: on the uniform strain
+/// $`u = \varepsilon X`$, $`\|\Delta U\|/s = k\,|\Delta\varepsilon|/\lambda_\text{ref}`$ whatever
+/// the mesh (both norms run over the same free nodes), so 3 and 24 elements take the same
+/// steps to round-off, each of length exactly $`\ell`$ in
+/// $`\|\Delta U\|^2/s^2 + \Delta\lambda^2/\lambda_\text{ref}^2`$. With the Euclidean norm of
+/// `load_scale` the finer mesh takes shorter load steps.
+#[test]
+fn dimensionless_arc_length_takes_the_same_steps_on_every_mesh() {
+    let model = NonlinearSpring {
+        k: 2.0,
+        b: 0.0,
+        c: 3.0,
+    };
+    let (arc, reference) = (0.4, 1.5);
+    let loads = |elements: usize, reference_load: Option<f64>| {
+        let problem = strip_problem(model.clone(), elements);
+        let positions = free_positions(&problem);
+        let options = RiksOptions {
+            initial_arc_length: arc,
+            min_arc_length: arc,
+            max_arc_length: arc,
+            reference_load,
+            max_steps: 5,
+            ..RiksOptions::default()
+        };
+        let (result, points) = run(&problem, &options);
+        assert!(matches!(result.stop, PathStop::MaxSteps));
+        // s = λ_ref ‖δU_F‖ with δU_F = X / k at the unstrained start.
+        let scale = reference * positions.iter().map(|x| x * x).sum::<f64>().sqrt() / model.k;
+        for pair in points.windows(2) {
+            let (a, b) = (&pair[0].1, &pair[1].1);
+            let displacement: f64 = a
+                .displacement
+                .iter()
+                .zip(&b.displacement)
+                .map(|(x, y)| (y - x) * (y - x))
+                .sum::<f64>()
+                .sqrt();
+            let length = if reference_load.is_some() {
+                (displacement / scale).hypot((b.load - a.load) / reference)
+            } else {
+                displacement.hypot(b.load - a.load)
+            };
+            assert!((length - arc).abs() <= 1e-6 * arc, "step length {length}");
+            assert_on_exact_path(&problem, &positions, b);
+        }
+        points.iter().map(|(_, s)| s.load).collect::<Vec<_>>()
+    };
+    let (coarse, fine) = (loads(3, Some(reference)), loads(24, Some(reference)));
+    for (a, b) in coarse.iter().zip(&fine) {
+        assert!(
+            (a - b).abs() <= 1e-9 * (1.0 + a.abs()),
+            "{coarse:?} vs {fine:?}"
+        );
+    }
+    let (coarse, fine) = (loads(3, None), loads(24, None));
+    assert!(fine[5] < 0.7 * coarse[5], "{coarse:?} vs {fine:?}");
+}
+
+/// A zero or non-finite reference load is refused before any step.
+#[test]
+fn a_zero_reference_load_is_rejected() {
+    let problem = strip_problem(
+        NonlinearSpring {
+            k: 1.0,
+            b: 0.0,
+            c: 1.0,
+        },
+        2,
+    );
+    for reference in [0.0, f64::INFINITY] {
+        let options = RiksOptions {
+            reference_load: Some(reference),
+            ..RiksOptions::default()
+        };
+        let (result, points) = run(&problem, &options);
+        assert!(points.is_empty());
+        let PathStop::Failed(error) = &result.stop else {
+            panic!("{}", result.stop.describe());
+        };
+        assert!(error.to_string().contains("reference_load"), "{error}");
+    }
+}
+
 #[test]
 fn snap_through_passes_both_limit_points() {
     // σ(ε) = ε − 3ε² + 2.5ε³: local maximum at ε = (6 − √6)/15, minimum at (6 + √6)/15.
@@ -308,6 +393,10 @@ fn snap_through_passes_both_limit_points() {
             "{}",
             result.stop.describe()
         );
+        // The step that passes the maximum from a stable start ends with negative pivots, but
+        // the load turns back there: a limit point of the path, which the crossing guard keeps
+        // at once (it halves only steps that jump over a bifurcation with the load still rising).
+        assert_eq!(result.statistics.rejected_steps, 0, "{constraint:?}");
         let strains: Vec<f64> = points
             .iter()
             .map(|(_, state)| assert_on_exact_path(&problem, &positions, state))

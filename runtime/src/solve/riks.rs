@@ -4,6 +4,10 @@
 //! $$`\|\Delta U\|^2 + \psi^2 \Delta\lambda^2 = \ell^2,`$$
 //! where $`(\Delta U, \Delta\lambda)`$ is the increment from the last accepted point and
 //! $`\psi`$ ([`RiksOptions::load_scale`]) weighs the load parameter against the displacements.
+//! With [`RiksOptions::reference_load`] the arc length is dimensionless instead:
+//! $`\|\Delta U\|^2/s^2 + \Delta\lambda^2/\lambda_\text{ref}^2 = \ell^2`$, with $`s`$ the norm of the
+//! linear response to $`\lambda_\text{ref}`$ at the start, so that the same arc lengths take the
+//! same steps on every mesh.
 //!
 //! * **Predictor**: the tangent $`(\delta U_F, 1)`$ with $`K_t\,\delta U_F = -\partial R/\partial\lambda`$,
 //!   scaled to length $`\ell`$; its orientation follows the previous increment (sign of the dot
@@ -19,6 +23,17 @@
 //!   ([`ArcLengthConstraint::Linearized`]) or from the exact sphere
 //!   ([`ArcLengthConstraint::Spherical`], Crisfield: the root closest in angle to the current
 //!   increment). The tangent is reassembled and refactorised every iteration.
+//! * **Crossing guard**: the tangent at each accepted point is factorised at once (it is the
+//!   next step's predictor tangent, so this costs nothing when the point is kept). When it has
+//!   negative pivots after a stable start (none) and the path tangent there still moves the load
+//!   the way the step's predictor did, the step converged past a bifurcation — near a nearly
+//!   perfect one, onto the unstable fundamental branch beyond the sharp turn of the imperfect
+//!   path — and is redone with half the arc length, up to [`MAX_CROSSING_HALVINGS`] times,
+//!   after which the crossing is the path's own (a perfect bifurcation) and the step is kept.
+//!   Where the load turns back the critical point is a limit point, which the path passes as it
+//!   should. Without the guard, arc lengths of 0.3 (in the dimensionless metric) ended
+//!   example 1 at 1.9 λ_c on another branch, or stayed on the fundamental branch to 600 λ_c
+//!   with a 1e-6 imperfection.
 //! * **Step control**: a failed step (no convergence, singular tangent, NaN, no real root) is
 //!   retried with $`\ell/2`$; below [`RiksOptions::min_arc_length`] the path ends with
 //!   [`PathStop::Failed`]. After an accepted step,
@@ -48,6 +63,19 @@ pub enum ArcLengthConstraint {
     Spherical,
 }
 
+/// Halvings of a step that jumped over a bifurcation (negative pivots at its end after a
+/// stable start, the load still moving the same way) before the crossing is taken as the
+/// path's own.
+///
+/// Near a nearly perfect bifurcation the imperfect path turns sharply at $`\lambda_c`$, within
+/// a load range that shrinks with the imperfection, and a step can converge past the turn onto
+/// the unstable fundamental branch (one negative pivot): the end's tangent, factorised anyway
+/// as the next step's, shows it. Such a step is redone with half the arc length. 12 halvings
+/// (a factor 4096) resolve the turn of example 1 with a 1e-6 imperfection, where 4 did not;
+/// a crossing that survives them is a perfect bifurcation of the path itself, and the step is
+/// kept. As in the ANM's guard, only a start without negative pivot is kept stable.
+pub const MAX_CROSSING_HALVINGS: usize = 12;
+
 /// Settings of [`follow_path_riks`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct RiksOptions {
@@ -70,7 +98,18 @@ pub struct RiksOptions {
     /// Stop ([`PathStop::MaxLoad`]) at the first accepted point with $`\lambda \ge`$ this.
     pub max_load: Option<f64>,
     /// Weight $`\psi`$ of the load parameter in the arc length (0 = displacements only).
+    /// Unused with [`RiksOptions::reference_load`].
     pub load_scale: f64,
+    /// `Some(λ_ref)`: a dimensionless arc length,
+    /// $`\ell^2 = \|\Delta U\|^2/s^2 + \Delta\lambda^2/\lambda_\text{ref}^2`$ with
+    /// $`s = |\lambda_\text{ref}|\,\|\delta U_F\|`$ the norm of the linear response to the load
+    /// $`\lambda_\text{ref}`$ at the start point ($`K_t\,\delta U_F = -\partial R/\partial\lambda`$).
+    /// The three arc lengths are then fractions of that response, on the fundamental branch a
+    /// step of $`\ell`$ moves the load by about $`\ell\lambda_\text{ref}/\sqrt2`$, and the number
+    /// of steps does not grow with the mesh (a Euclidean $`\|\Delta U\|`$ grows as the square
+    /// root of the number of unknowns). `None`: the metric of `load_scale`, displacements in
+    /// their own unit.
+    pub reference_load: Option<f64>,
     /// Constraint used by the corrector.
     pub constraint: ArcLengthConstraint,
 }
@@ -87,6 +126,7 @@ impl Default for RiksOptions {
             max_steps: 200,
             max_load: None,
             load_scale: 1.0,
+            reference_load: None,
             constraint: ArcLengthConstraint::Spherical,
         }
     }
@@ -112,6 +152,13 @@ impl RiksOptions {
             return Err(format!(
                 "arc lengths must satisfy min <= initial <= max, got {} <= {} <= {}",
                 self.min_arc_length, self.initial_arc_length, self.max_arc_length
+            ));
+        }
+        if let Some(reference) = self.reference_load
+            && !(reference != 0.0 && reference.is_finite())
+        {
+            return Err(format!(
+                "reference_load must be non-zero and finite, got {reference}"
             ));
         }
         if self.max_iterations == 0 {
@@ -325,6 +372,50 @@ fn trace<M: EnergyModel>(
         return (PathStop::MaxLoad, start);
     }
 
+    // Whether the factorisation in hand is the tangent at `current` (the start's, or the
+    // previous step's end check), so that the step does not factorise it again.
+    let mut start_factorized = false;
+    let normalized;
+    let options = match options.reference_load {
+        None => options,
+        Some(reference) => {
+            let response = linearization
+                .factorize(&start.displacement, start.load)
+                .and_then(|()| linearization.load_tangent(&start.displacement, start.load));
+            let scale = match response {
+                Ok(tangent) => reference.abs() * dot(&tangent, &tangent).sqrt(),
+                Err(source) => {
+                    let context = format!(
+                        "Newton–Riks at load {:.6e}: singular tangent at the start point (no \
+                         arc-length scale)",
+                        start.load
+                    );
+                    return (
+                        PathStop::Failed(SolveError::Linear { context, source }),
+                        start,
+                    );
+                }
+            };
+            if !(scale > 0.0 && scale.is_finite()) {
+                let message = format!(
+                    "Newton–Riks: the linear response to the reference load {reference:e} has \
+                     norm {scale:e}; the dimensionless arc length needs a load that moves the \
+                     displacements"
+                );
+                return (failed(start.load, message), start);
+            }
+            start_factorized = true;
+            normalized = RiksOptions {
+                initial_arc_length: options.initial_arc_length * scale,
+                min_arc_length: options.min_arc_length * scale,
+                max_arc_length: options.max_arc_length * scale,
+                load_scale: scale / reference.abs(),
+                reference_load: None,
+                ..options.clone()
+            };
+            &normalized
+        }
+    };
     let load_scale = options.load_scale;
     let mut current = start;
     let mut arc_length = options.initial_arc_length;
@@ -337,8 +428,17 @@ fn trace<M: EnergyModel>(
         }
         step += 1;
         // Unit predictor direction (in the arc-length metric).
-        let tangent = linearization
-            .factorize(&current.displacement, current.load)
+        let factorized = if std::mem::take(&mut start_factorized) {
+            Ok(())
+        } else {
+            linearization.factorize(&current.displacement, current.load)
+        };
+        // Negative pivots of the start's tangent, for the crossing guard.
+        let start_pivots = factorized
+            .as_ref()
+            .ok()
+            .and_then(|()| linearization.factor.negative_pivots());
+        let tangent = factorized
             .and_then(|()| linearization.load_tangent(&current.displacement, current.load));
         let (mut direction, mut load_direction) = match (tangent, &previous) {
             (Ok(mut displacement_tangent), _) => {
@@ -394,6 +494,7 @@ fn trace<M: EnergyModel>(
         }
         load_direction /= length;
 
+        let mut halvings = 0;
         let corrected = loop {
             match correct(
                 linearization,
@@ -403,7 +504,36 @@ fn trace<M: EnergyModel>(
                 arc_length,
                 options,
             ) {
-                Ok(corrected) => break corrected,
+                Ok(corrected) => {
+                    // The end's tangent is the next step's: factorising it here costs nothing
+                    // when the end is kept, and its inertia tells whether the step crossed a
+                    // critical point (see `MAX_CROSSING_HALVINGS`).
+                    let end = &corrected.state;
+                    let factorized = linearization.factorize(&end.displacement, end.load);
+                    let crossed = start_pivots == Some(0)
+                        && match (&factorized, linearization.factor.negative_pivots()) {
+                            (Err(_), _) => true,
+                            (Ok(()), Some(after)) => {
+                                after > 0
+                                    && load_keeps_its_direction(
+                                        linearization,
+                                        &current,
+                                        end,
+                                        load_direction,
+                                        load_scale,
+                                    )
+                            }
+                            (Ok(()), None) => false,
+                        };
+                    if crossed && halvings < MAX_CROSSING_HALVINGS {
+                        halvings += 1;
+                        linearization.statistics.rejected_steps += 1;
+                        arc_length *= 0.5;
+                        continue;
+                    }
+                    start_factorized = factorized.is_ok();
+                    break corrected;
+                }
                 Err(failure) => {
                     linearization.statistics.rejected_steps += 1;
                     arc_length *= 0.5;
@@ -451,6 +581,32 @@ fn trace<M: EnergyModel>(
             return (PathStop::MaxLoad, current);
         }
     }
+}
+
+/// Whether the path tangent at `end`, oriented along the step's increment from `start`, still
+/// moves the load in the sense of the step's predictor (`load_direction`), with the tangent at
+/// `end` factorised. A critical point crossed with the load still moving the same way is a
+/// bifurcation jumped over; at a limit point the load turns back. A singular solve counts as
+/// a jump.
+fn load_keeps_its_direction<M: EnergyModel>(
+    linearization: &mut Linearization<'_, M>,
+    start: &PathState,
+    end: &PathState,
+    load_direction: f64,
+    load_scale: f64,
+) -> bool {
+    let Ok(tangent) = linearization.load_tangent(&end.displacement, end.load) else {
+        return true;
+    };
+    let increment: Vec<f64> = end
+        .displacement
+        .iter()
+        .zip(&start.displacement)
+        .map(|(new, old)| new - old)
+        .collect();
+    let alignment = arc_dot(&increment, end.load - start.load, &tangent, 1.0, load_scale);
+    // The oriented tangent is ±(δU_F, 1): its load component is the sign of the alignment.
+    (alignment >= 0.0) == (load_direction >= 0.0)
 }
 
 /// One step attempt: predictor of length `arc_length` along the unit direction
