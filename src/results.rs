@@ -102,6 +102,11 @@ pub struct Trace {
     pub last: Snap,
     /// The user interrupted the path (Ctrl-C) after the last point.
     pub interrupted: bool,
+    /// Load of the first point past $`\lambda_c`$ of a path without imperfection
+    /// (`solver.perturbation = 0`) and without `solver.max_load`, where the run stopped: the
+    /// path stays on the fundamental branch, unstable beyond the bifurcation, and never reaches
+    /// an amplitude target.
+    pub passed_perfect_bifurcation: Option<f64>,
     /// Seconds in the Legendre–Hadamard checks of the step ends (part of
     /// `recording_seconds`).
     pub ellipticity_seconds: f64,

@@ -181,7 +181,13 @@ fn add_uniform_imperfection<M: EnergyModel>(
     Ok(2.0 * scene.solver.perturbation * h)
 }
 
-/// Watches the path: amplitudes, ellipticity at step ends, snapshots; stops at the target.
+/// Largest $`\max|w|/h`$ of a path without imperfection still taken as flat past $`\lambda_c`$
+/// (the fundamental branch has $`w = 0`$ exactly; a default imperfection gives $`10^{-4}`$
+/// unloaded).
+const PERFECT_FLATNESS: f64 = 1e-8;
+
+/// Watches the path: amplitudes, ellipticity at step ends, snapshots; stops at the target or,
+/// without imperfection, past the threshold on the flat fundamental branch.
 struct PathRecorder<'a, M: EnergyModel> {
     scene: &'a Scene,
     problem: &'a Problem<M>,
@@ -276,6 +282,15 @@ impl<M: EnergyModel> PathRecorder<'_, M> {
             self.trace.interrupted = true;
             PathControl::Stop
         } else if max_amplitude / h >= self.target {
+            PathControl::Stop
+        } else if self.scene.solver.perturbation == 0.0
+            && self.scene.solver.max_load == 0.0
+            && state.load > self.critical_load
+            && max_amplitude / h < PERFECT_FLATNESS
+        {
+            // A perfect bifurcation: without an imperfection the path goes on along the
+            // fundamental branch, which is unstable past λ_c, and never wrinkles.
+            self.trace.passed_perfect_bifurcation = Some(state.load);
             PathControl::Stop
         } else {
             PathControl::Continue
@@ -407,6 +422,7 @@ impl<'a, M: EnergyModel> PathRecorder<'a, M> {
                 requested: Vec::new(),
                 last: Snap::default(),
                 interrupted: false,
+                passed_perfect_bifurcation: None,
                 ellipticity_seconds: 0.0,
                 recording_seconds: 0.0,
             },
@@ -443,6 +459,8 @@ fn trace_path<M: EnergyModel>(
     };
     let stop = if recorder.trace.interrupted {
         "interrupted by the user".to_string()
+    } else if recorder.trace.passed_perfect_bifurcation.is_some() {
+        "stopped past λ_c: no imperfection, no wrinkles".to_string()
     } else {
         result.stop.describe()
     };

@@ -176,6 +176,14 @@ fn outcome(context: &RunContext, trace: &Trace) -> RunOutcome {
             trace.points.len()
         ));
     }
+    if let Some(load) = trace.passed_perfect_bifurcation {
+        let loads = context.load_quantity();
+        return RunOutcome::Incomplete(format!(
+            "no imperfection (solver.perturbation = 0): past λ_c = {} the path stays flat on the unstable fundamental branch (max |w| = 0 at λ = {}); set solver.perturbation (e.g. 1e-4) to wrinkle, or solver.max_load to follow that branch",
+            loads.format_value(context.threshold.critical_load()),
+            loads.format_value(load)
+        ));
+    }
     let reached = trace.points.last().is_some_and(|p| {
         p.max_amplitude_over_h >= context.scene.solver.max_amplitude_over_thickness
     });
@@ -643,10 +651,15 @@ fn warnings(context: &RunContext, trace: &Trace) -> Vec<Warning> {
             Severity::Warning,
             "unstable branch",
             format!(
-                "the tangent had {} negative eigenvalue(s) at the start of step {} (λ = {}): the path is on an unstable equilibrium branch — past a secondary bifurcation, or a step jumped over one (a tighter solver.series_tolerance tells which)",
+                "the tangent had {} negative eigenvalue(s) at the start of step {} (λ = {}): the path is on an unstable equilibrium branch — {}",
                 step.negative_pivots.unwrap_or(0),
                 step.step,
-                context.load_quantity().format_value(step.load_range.0)
+                context.load_quantity().format_value(step.load_range.0),
+                if context.scene.solver.perturbation == 0.0 {
+                    "without an imperfection (solver.perturbation = 0) it stays on the fundamental branch past the bifurcation"
+                } else {
+                    "past a secondary bifurcation, or a step jumped over one (a tighter solver.series_tolerance tells which)"
+                }
             ),
         ));
     }

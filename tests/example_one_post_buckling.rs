@@ -323,3 +323,61 @@ fn riks_through_a_nearly_perfect_bifurcation_stays_on_the_wrinkled_branch() {
     let _ = std::fs::remove_dir_all(&anm_dir);
     let _ = std::fs::remove_dir_all(&riks_dir);
 }
+
+/// The perfect problem (`solver.perturbation = 0`): the path stays on the flat fundamental
+/// branch (w = 0 exactly) past the bifurcation and can never reach an amplitude target. The
+/// run stops at its first point past λ_c and says why (exit 3), where it used to walk the
+/// unstable branch for its 200 steps to 1300 λ_c; with `solver.max_load` it follows that
+/// branch to the load asked, and the unstable-branch warning names the missing imperfection.
+#[test]
+fn the_perfect_problem_stops_past_the_threshold_and_says_why() {
+    let base = [
+        "mesh.nx=8",
+        "mesh.ny=4",
+        "solver.order=12",
+        "solver.perturbation=0",
+        "output.plots=false",
+        "output.vtu=false",
+        "output.surface=false",
+    ];
+    for method in ["anm", "riks"] {
+        let mut settings = base.to_vec();
+        let method_setting = format!("solver.method={method}");
+        settings.push(&method_setting);
+        let dir = output_directory(&format!("perfect-{method}"));
+        let report = run(&scene(&settings), &dir, true).unwrap();
+        let wrinkle::results::RunOutcome::Incomplete(reason) = &report.outcome else {
+            panic!("{method}: {:?}", report.outcome);
+        };
+        assert!(reason.contains("no imperfection"), "{reason}");
+        assert_eq!(report.outcome.exit_code(), 3);
+        let lambda_c = report.summary["linear_buckling_load"].as_f64().unwrap();
+        let points = path_of(&report.summary);
+        assert!(points.iter().all(|p| p.max_amplitude_over_h == 0.0));
+        let last = points.last().unwrap();
+        assert!(
+            last.lambda > lambda_c && last.lambda < 2.0 * lambda_c,
+            "{method}: {}",
+            last.lambda
+        );
+        assert!(report.summary["steps"].as_u64().unwrap() < 20);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+    let mut settings = base.to_vec();
+    settings.push("solver.max_load=0.1");
+    let dir = output_directory("perfect-max-load");
+    let report = run(&scene(&settings), &dir, true).unwrap();
+    let wrinkle::results::RunOutcome::Incomplete(reason) = &report.outcome else {
+        panic!("{:?}", report.outcome);
+    };
+    assert!(reason.starts_with("maximum load reached"), "{reason}");
+    assert!(path_of(&report.summary).last().unwrap().lambda >= 0.1);
+    assert!(
+        report
+            .summary_text
+            .contains("without an imperfection (solver.perturbation = 0)"),
+        "{}",
+        report.summary_text
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

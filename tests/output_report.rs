@@ -72,6 +72,27 @@ fn summary_rows_carry_units_and_the_closed_form_beside_the_critical_load() {
     assert_eq!(text.lines().count(), rows.len());
 }
 
+/// A long stop reason does not widen the table: the other rows' notes keep the column of the
+/// short values, and the long value is followed by its note after two spaces.
+#[test]
+fn a_long_stop_reason_keeps_the_table_narrow() {
+    let mut summary = default_scene_summary();
+    let short = summary.to_text();
+    let note_column = |text: &str, label: &str| {
+        let line = text.lines().find(|l| l.starts_with(label)).unwrap();
+        line.find("λ / λ_c")
+            .map(|byte| line[..byte].chars().count())
+    };
+    summary.stop = "no imperfection (solver.perturbation = 0): past λ_c the path stays flat on the unstable fundamental branch".into();
+    summary.reached_target = false;
+    let long = summary.to_text();
+    assert_eq!(
+        note_column(&long, "final load"),
+        note_column(&short, "final load")
+    );
+    assert!(long.contains(&format!("{}  did not reach what was asked", summary.stop)));
+}
+
 #[test]
 fn report_is_self_contained_with_embedded_images_and_warnings() {
     let dir = scratch_dir("report");

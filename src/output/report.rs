@@ -188,11 +188,22 @@ fn signed(number: String) -> String {
     }
 }
 
-/// Rows as an aligned plain-text table: label, value, note.
+/// Values longer than this (a stop reason, a long warning) are not padded to and do not widen
+/// the value column: one long reason would otherwise push every note of the table far right.
+const ALIGNED_VALUE_WIDTH: usize = 48;
+
+/// Rows as an aligned plain-text table: label, value, note. The notes are aligned after the
+/// values of up to [`ALIGNED_VALUE_WIDTH`] characters; a longer value is followed by its note
+/// directly.
 pub fn format_rows(rows: &[SummaryRow]) -> String {
     let width = |text: &str| text.chars().count();
     let label_width = rows.iter().map(|r| width(&r.label)).max().unwrap_or(0);
-    let value_width = rows.iter().map(|r| width(&r.value)).max().unwrap_or(0);
+    let value_width = rows
+        .iter()
+        .map(|r| width(&r.value))
+        .filter(|&w| w <= ALIGNED_VALUE_WIDTH)
+        .max()
+        .unwrap_or(0);
     let mut text = String::new();
     for row in rows {
         let line = format!(
