@@ -73,7 +73,8 @@ pub enum ArcLengthConstraint {
 /// as the next step's, shows it. Such a step is redone with half the arc length. 12 halvings
 /// (a factor 4096) resolve the turn of example 1 with a 1e-6 imperfection, where 4 did not;
 /// a crossing that survives them is a perfect bifurcation of the path itself, and the step is
-/// kept. As in the ANM's guard, only a start without negative pivot is kept stable.
+/// kept (as it is when a halving would go below `RiksOptions::min_arc_length`). As in the
+/// ANM's guard, only a start without negative pivot is kept stable.
 pub const MAX_CROSSING_HALVINGS: usize = 12;
 
 /// Settings of [`follow_path_riks`].
@@ -525,7 +526,10 @@ fn trace<M: EnergyModel>(
                             }
                             (Ok(()), None) => false,
                         };
-                    if crossed && halvings < MAX_CROSSING_HALVINGS {
+                    if crossed
+                        && halvings < MAX_CROSSING_HALVINGS
+                        && 0.5 * arc_length >= options.min_arc_length
+                    {
                         halvings += 1;
                         linearization.statistics.rejected_steps += 1;
                         arc_length *= 0.5;
