@@ -193,7 +193,7 @@ fn signed(number: String) -> String {
 const ALIGNED_VALUE_WIDTH: usize = 48;
 
 /// Rows as an aligned plain-text table: label, value, note. The notes are aligned after the
-/// values of up to [`ALIGNED_VALUE_WIDTH`] characters; a longer value is followed by its note
+/// values of up to 48 characters (`ALIGNED_VALUE_WIDTH`); a longer value is followed by its note
 /// directly.
 pub fn format_rows(rows: &[SummaryRow]) -> String {
     let width = |text: &str| text.chars().count();
