@@ -437,7 +437,7 @@ fn search_wavenumber<M: EnergyModel>(
         };
         progress.evaluation(count, &detail);
     };
-    let poisson_hint = poisson_hint(scene);
+    let poisson_hint = format!("{}{}", direction_hint(scene), poisson_hint(scene));
     let fail = |e: String| {
         Error::Solver(format!(
             "wavenumber search of `{}` over Q in [{:.3e}, {:.3e}] 1/mm (wavelengths from {:.3e} to {:.3e} mm): {e}. \
@@ -512,6 +512,37 @@ fn long_wavelength_end_note(scene: &Scene, q: f64) -> String {
 /// A hint for auxetic sheets, $`\nu \le -0.9`$ (empty otherwise): the in-plane problem is nearly
 /// singular there and Newton stalls at round-off; measured on example 1 at 32 × 16, ν = −0.99
 /// is solved and ν = −0.999 stalls at a relative residual of 1.2e-6 (tolerance 1e-8).
+/// A hint when the wave vector (`model.direction`) is far from the direction the load
+/// compresses: along X for the biaxial load ($`\lambda = -N_X`$), along Y for the strip (the
+/// transverse compression near its middle). An envelope model then sees no compression along
+/// its carrier, and no wavenumber buckles.
+fn direction_hint(scene: &Scene) -> String {
+    let theta = scene.model.direction_degrees.to_radians();
+    let (compressed, expected) = match scene.load.kind {
+        LoadKind::Biaxial => ("along X (λ = −N_X)", 0.0),
+        LoadKind::Strip => ("across the strip, along Y, near its middle", 90.0),
+    };
+    let along = if expected == 0.0 {
+        theta.cos().abs()
+    } else {
+        theta.sin().abs()
+    };
+    if along < 0.5 {
+        format!(
+            " The {} load compresses the sheet {compressed}, but the wave vector is at model.direction = {}° from X: set model.direction = {expected}{}.",
+            scene.load.kind.as_str(),
+            scene.model.direction_degrees,
+            if scene.load.kind == LoadKind::Strip {
+                " (as examples/scenes/long_strip.toml does)"
+            } else {
+                ""
+            }
+        )
+    } else {
+        String::new()
+    }
+}
+
 fn poisson_hint(scene: &Scene) -> String {
     let nu = scene.material.poisson_ratio;
     if nu <= -0.9 {

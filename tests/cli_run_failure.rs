@@ -41,3 +41,32 @@ fn unreachable_tolerance_fails_cleanly_with_outputs_written() {
     assert!(dir.join("path.csv").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A wave vector across the compression finds no buckling wavenumber: the strip load on the
+/// default scene (whose `model.direction` is 0, right for example 1) compresses the sheet along
+/// Y, and example 1 with `model.direction = 90` has no compression along Y. Both fail with
+/// exit 1, and the message names `model.direction` and the value to set.
+#[test]
+fn a_wave_vector_across_the_compression_names_model_direction() {
+    for (settings, expected) in [
+        (
+            ["load.kind=strip", "model.direction=0"],
+            "set model.direction = 90",
+        ),
+        (
+            ["load.kind=biaxial", "model.direction=90"],
+            "set model.direction = 0",
+        ),
+    ] {
+        let mut command = Command::new(env!("CARGO_BIN_EXE_wrinkle"));
+        command.args(["buckle", "--set", "mesh.nx=8", "--set", "mesh.ny=4"]);
+        for setting in settings {
+            command.args(["--set", setting]);
+        }
+        let output = command.output().unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(1), "stderr: {stderr}");
+        assert!(stderr.contains(expected), "stderr: {stderr}");
+        assert!(!stderr.contains("panicked"));
+    }
+}
