@@ -328,6 +328,22 @@ mod tests {
         values
     }
 
+    /// The snapshot of `values` with the wave vector along X.
+    fn snapshot<'a>(
+        mesh: &'a Mesh,
+        layout: &'a Layout,
+        values: &'a [f64],
+        wavenumber: f64,
+    ) -> Snapshot<'a> {
+        Snapshot {
+            mesh,
+            layout,
+            values,
+            wavenumber,
+            direction: 0.0,
+        }
+    }
+
     #[test]
     fn layouts_follow_the_declared_roles_of_every_registered_model() {
         let plate = Layout::from_spec(FvkPlate::SPEC).unwrap();
@@ -358,13 +374,7 @@ mod tests {
         let q = 2.3;
         let layout = Layout::from_spec(ReferenceEnvelope::SPEC).unwrap();
         let values = nodal(&mesh, &layout, |f, _| if f == 2 { 1.0 } else { 0.0 });
-        let s = Snapshot {
-            mesh: &mesh,
-            layout: &layout,
-            values: &values,
-            wavenumber: q,
-            direction: 0.0,
-        };
+        let s = snapshot(&mesh, &layout, &values, q);
         for p in [[1.0, 1.0], [3.7, 2.2], [9.1, 4.0]] {
             assert!((s.deflection(p) - 2.0 * (q * p[0]).cos()).abs() < 1e-12);
         }
@@ -377,13 +387,7 @@ mod tests {
             6 => 0.8,
             _ => 0.0,
         });
-        let s = Snapshot {
-            mesh: &mesh,
-            layout: &layout,
-            values: &values,
-            wavenumber: q,
-            direction: 0.0,
-        };
+        let s = snapshot(&mesh, &layout, &values, q);
         let p = [3.7, 2.2];
         let expected = 2.0 * (0.6 * (q * p[0]).cos() - 0.8 * (q * p[0]).sin());
         assert!((s.deflection(p) - expected).abs() < 1e-12);
@@ -405,13 +409,7 @@ mod tests {
             6 => 0.8,
             _ => 0.0,
         });
-        let s = Snapshot {
-            mesh: &mesh,
-            layout: &layout,
-            values: &values,
-            wavenumber: q,
-            direction: 0.0,
-        };
+        let s = snapshot(&mesh, &layout, &values, q);
         assert!((s.max_amplitude() - 2.0).abs() < 1e-12);
         assert!((s.max_deflection() - 2.3).abs() < 1e-12);
         let step = 2.0 * std::f64::consts::PI / q / 16.0;
@@ -424,11 +422,7 @@ mod tests {
         );
         let plate = Layout::from_spec(FvkPlate::SPEC).unwrap();
         let values = nodal(&mesh, &plate, |f, p| if f == 2 { p[0] - 7.0 } else { 0.0 });
-        let s = Snapshot {
-            layout: &plate,
-            values: &values,
-            ..s
-        };
+        let s = snapshot(&mesh, &plate, &values, q);
         assert_eq!(s.max_deflection(), s.max_amplitude());
         assert!((s.max_deflection() - 7.0).abs() < 1e-12);
     }
@@ -447,13 +441,7 @@ mod tests {
                 0.0
             }
         });
-        let s = Snapshot {
-            mesh: &mesh,
-            layout: &layout,
-            values: &values,
-            wavenumber: 0.0,
-            direction: 0.0,
-        };
+        let s = snapshot(&mesh, &layout, &values, 0.0);
         let measured = wavelength_along_line(&s, [50.0, 10.0], 200.0).unwrap();
         assert!(
             (measured - wavelength).abs() / wavelength < 1e-2,

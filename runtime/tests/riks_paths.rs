@@ -145,6 +145,16 @@ fn assert_on_exact_path(
     strain
 }
 
+/// Euclidean norm $`\|\Delta U\|`$ of the displacement increment from `a` to `b`.
+fn displacement_distance(a: &PathState, b: &PathState) -> f64 {
+    a.displacement
+        .iter()
+        .zip(&b.displacement)
+        .map(|(x, y)| (y - x) * (y - x))
+        .sum::<f64>()
+        .sqrt()
+}
+
 /// Runs Riks and collects every reported point.
 fn run(
     problem: &Problem<NonlinearSpring>,
@@ -260,12 +270,7 @@ fn step_lengths_satisfy_the_arc_length_equation() {
         assert_eq!(points.len(), 7);
         for pair in points.windows(2) {
             let (a, b) = (&pair[0].1, &pair[1].1);
-            let squared: f64 = a
-                .displacement
-                .iter()
-                .zip(&b.displacement)
-                .map(|(x, y)| (y - x) * (y - x))
-                .sum::<f64>()
+            let squared = displacement_distance(a, b).powi(2)
                 + load_scale * load_scale * (b.load - a.load).powi(2);
             // The linearised constraint is only converged along with the residual.
             assert!(
@@ -309,13 +314,7 @@ fn dimensionless_arc_length_takes_the_same_steps_on_every_mesh() {
         let scale = reference * positions.iter().map(|x| x * x).sum::<f64>().sqrt() / model.k;
         for pair in points.windows(2) {
             let (a, b) = (&pair[0].1, &pair[1].1);
-            let displacement: f64 = a
-                .displacement
-                .iter()
-                .zip(&b.displacement)
-                .map(|(x, y)| (y - x) * (y - x))
-                .sum::<f64>()
-                .sqrt();
+            let displacement = displacement_distance(a, b);
             let length = if reference_load.is_some() {
                 (displacement / scale).hypot((b.load - a.load) / reference)
             } else {

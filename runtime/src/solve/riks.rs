@@ -443,19 +443,16 @@ fn trace<M: EnergyModel>(
             .and_then(|()| linearization.load_tangent(&current.displacement, current.load));
         let (mut direction, mut load_direction) = match (tangent, &previous) {
             (Ok(mut displacement_tangent), _) => {
-                let sign = match &previous {
-                    Some((increment, load_increment)) => {
-                        let alignment = arc_dot(
+                let sign = previous
+                    .as_ref()
+                    .map_or(1.0, |(increment, load_increment)| {
+                        orientation(
                             increment,
                             *load_increment,
                             &displacement_tangent,
-                            1.0,
                             load_scale,
-                        );
-                        if alignment < 0.0 { -1.0 } else { 1.0 }
-                    }
-                    None => 1.0,
-                };
+                        )
+                    });
                 for value in displacement_tangent.iter_mut() {
                     *value *= sign;
                 }
@@ -554,15 +551,7 @@ fn trace<M: EnergyModel>(
             }
         };
 
-        let increment: Vec<f64> = corrected
-            .state
-            .displacement
-            .iter()
-            .zip(&current.displacement)
-            .map(|(new, old)| new - old)
-            .collect();
-        let load_increment = corrected.state.load - current.load;
-        previous = Some((increment, load_increment));
+        previous = Some(increment(&current, &corrected.state));
         current = corrected.state;
         linearization.statistics.steps += 1;
         let factor =
@@ -602,15 +591,30 @@ fn load_keeps_its_direction<M: EnergyModel>(
     let Ok(tangent) = linearization.load_tangent(&end.displacement, end.load) else {
         return true;
     };
-    let increment: Vec<f64> = end
+    let (step, load_step) = increment(start, end);
+    // The oriented tangent is ±(δU_F, 1): its load component is the orientation's sign.
+    orientation(&step, load_step, &tangent, load_scale) == load_direction.signum()
+}
+
+/// The increment $`(\Delta U, \Delta\lambda)`$ from `from` to `to`.
+fn increment(from: &PathState, to: &PathState) -> (Vec<f64>, f64) {
+    let displacement = to
         .displacement
         .iter()
-        .zip(&start.displacement)
+        .zip(&from.displacement)
         .map(|(new, old)| new - old)
         .collect();
-    let alignment = arc_dot(&increment, end.load - start.load, &tangent, 1.0, load_scale);
-    // The oriented tangent is ±(δU_F, 1): its load component is the sign of the alignment.
-    (alignment >= 0.0) == (load_direction >= 0.0)
+    (displacement, to.load - from.load)
+}
+
+/// $`\pm 1`$: the sign that orients the path tangent $`(\delta U_F, 1)`$ along the increment
+/// $`(\Delta U, \Delta\lambda)`$ in the arc-length metric (+1 when they are orthogonal).
+fn orientation(increment: &[f64], load_increment: f64, tangent: &[f64], load_scale: f64) -> f64 {
+    if arc_dot(increment, load_increment, tangent, 1.0, load_scale) < 0.0 {
+        -1.0
+    } else {
+        1.0
+    }
 }
 
 /// One step attempt: predictor of length `arc_length` along the unit direction
@@ -823,13 +827,7 @@ pub fn correct_on_arc<M: EnergyModel>(
     options: &RiksOptions,
     statistics: &mut PathStatistics,
 ) -> Result<ArcCorrection, SolveError> {
-    let increment: Vec<f64> = predicted
-        .displacement
-        .iter()
-        .zip(&origin.displacement)
-        .map(|(p, o)| p - o)
-        .collect();
-    let load_increment = predicted.load - origin.load;
+    let (increment, load_increment) = increment(origin, predicted);
     let arc_length = arc_dot(
         &increment,
         load_increment,
