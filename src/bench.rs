@@ -404,6 +404,12 @@ pub fn relative_error(value: Option<f64>, reference: Option<f64>) -> Option<f64>
 /// next); linear between the two around the crossing when there are not four. The path's dense
 /// output is a few points per step along a curved response, so linear interpolation alone adds
 /// an error (about $`10^{-4}`$ in $`a/h`$ at $`1.1\lambda_c`$) larger than the solver's.
+///
+/// The cubic is kept only when it lies between the two values around the crossing (where a
+/// response monotone between two samples must be): across a step much longer than its
+/// neighbours — Riks' one step over the knee of the long strip, $`a/h`$ from 0.02 to 1.49 —
+/// the cubic through such unevenly spaced samples overshoots (it gave $`\lambda(a/h = 1)`$ =
+/// 27.9 where the bracket is 13.9–16.0), and the linear value is used instead.
 pub fn value_at_crossing(samples: &[(f64, f64)], target: f64) -> Option<f64> {
     let i = samples
         .windows(2)
@@ -445,7 +451,12 @@ pub fn value_at_crossing(samples: &[(f64, f64)], target: f64) -> Option<f64> {
             yj * basis
         })
         .sum();
-    Some(if cubic.is_finite() { cubic } else { linear })
+    let (low, high) = (a.1.min(b.1), a.1.max(b.1));
+    Some(if cubic.is_finite() && (low..=high).contains(&cubic) {
+        cubic
+    } else {
+        linear
+    })
 }
 
 /// Maximum physical $`a/h`$ where the path first reaches the load `load`
@@ -1044,6 +1055,29 @@ mod tests {
         assert!((value - f(1.3)).abs() < 1e-12, "{value} vs {}", f(1.3));
         let linear = f(1.0) + 0.5 * (f(1.6) - f(1.0));
         assert!((linear - f(1.3)).abs() > 1e-2);
+    }
+
+    /// Riks' path of the long strip at 16 × 8 steps over the knee in one step (a/h from 0.02
+    /// to 1.49): the cubic through the four samples around a/h = 1 leaves that step's load
+    /// bracket, and the value falls back to the linear one inside it.
+    #[test]
+    fn a_cubic_that_overshoots_a_long_step_falls_back_to_linear() {
+        let path = [
+            point(9.421, 0.0005),
+            point(12.396, 0.0016),
+            point(13.883, 0.0205),
+            point(15.987, 1.4943),
+            point(17.474, 2.0442),
+            point(19.192, 2.5930),
+        ];
+        let load = load_at_amplitude(&path, 1.0).unwrap();
+        let linear = 13.883 + (1.0 - 0.0205) / (1.4943 - 0.0205) * (15.987 - 13.883);
+        assert!((load - linear).abs() < 1e-12, "{load} vs {linear}");
+        // Where the cubic stays inside its bracket it is kept (it differs from the linear value).
+        let amplitude = amplitude_at_load(&path, 17.0).unwrap();
+        let linear = 1.4943 + (17.0 - 15.987) / (17.474 - 15.987) * (2.0442 - 1.4943);
+        assert!((1.4943..=2.0442).contains(&amplitude), "{amplitude}");
+        assert!((amplitude - linear).abs() > 1e-3, "{amplitude} vs {linear}");
     }
 
     #[test]
