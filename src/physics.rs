@@ -117,6 +117,23 @@ impl Layout {
     pub fn is_envelope(&self) -> bool {
         !matches!(self.kind, DeflectionKind::Plate { .. })
     }
+
+    /// The fields the physical deflection is built from: the deflection, the envelope, or the
+    /// complex envelope's two parts and its mean deflection.
+    pub fn deflection_fields(&self) -> Vec<usize> {
+        match self.kind {
+            DeflectionKind::Plate { deflection } => vec![deflection],
+            DeflectionKind::RealEnvelope { envelope } => vec![envelope],
+            DeflectionKind::ComplexEnvelope {
+                real,
+                imaginary,
+                mean,
+            } => [Some(real), Some(imaginary), mean]
+                .into_iter()
+                .flatten()
+                .collect(),
+        }
+    }
 }
 
 fn describe_fields(spec: &ModelSpec) -> String {

@@ -30,7 +30,7 @@ use wrinkle_runtime::solve::anm::{AnmOptions, AnmStep, follow_path_anm};
 use wrinkle_runtime::solve::ellipticity::legendre_hadamard;
 use wrinkle_runtime::solve::newton::{NewtonOptions, newton};
 use wrinkle_runtime::solve::path::{PathControl, PathEvent, PathResult, PathState, PathStop};
-use wrinkle_runtime::solve::riks::{RiksOptions, follow_path_riks};
+use wrinkle_runtime::solve::riks::{AmplitudeControl, RiksOptions, follow_path_riks};
 
 /// Path following of a scene, writing its outputs into `output_directory`. Progress goes to
 /// standard error unless `quiet`.
@@ -185,6 +185,10 @@ fn add_uniform_imperfection<M: EnergyModel>(
 /// (the fundamental branch has $`w = 0`$ exactly; a default imperfection gives $`10^{-4}`$
 /// unloaded).
 const PERFECT_FLATNESS: f64 = 1e-8;
+
+/// Largest change of the deflection (or envelope) fields in one Riks step, in thicknesses:
+/// a quarter thickness of envelope is half a thickness of physical amplitude.
+const RIKS_MAX_AMPLITUDE_CHANGE: f64 = 0.25;
 
 /// Watches the path: amplitudes, ellipticity at step ends, snapshots; stops at the target or,
 /// without imperfection, past the threshold on the flat fundamental branch.
@@ -448,6 +452,7 @@ fn trace_path<M: EnergyModel>(
         follow(
             scene,
             problem,
+            layout,
             factor,
             start,
             max_load,
@@ -505,6 +510,7 @@ fn stress_resultants<M: EnergyModel>(
 fn follow<M: EnergyModel>(
     scene: &Scene,
     problem: &Problem<M>,
+    layout: &Layout,
     factor: &mut SparseFactorization,
     start: PathState,
     max_load: Option<f64>,
@@ -540,6 +546,14 @@ fn follow<M: EnergyModel>(
             // adapt to the Newton iterations up to 0.3 of it. A step that converges past the
             // sharp turn of the imperfect branch at the threshold, onto the unstable fundamental
             // branch, is caught by the crossing guard (negative pivots at its end) and halved.
+            // The arc length hardly sees wrinkles beside the in-plane displacements: a step
+            // may change the deflection (envelope) fields by at most a quarter thickness, so
+            // that the knee of the response is resolved.
+            let dofs = problem.dofs();
+            let fields = layout.deflection_fields();
+            let amplitude_dofs: Vec<usize> = (0..dofs.node_count)
+                .flat_map(|node| fields.iter().filter_map(move |&f| dofs.free(node, f)))
+                .collect();
             let options = RiksOptions {
                 tolerance: scene.solver.tolerance,
                 max_steps: scene.solver.max_steps,
@@ -548,6 +562,10 @@ fn follow<M: EnergyModel>(
                 load_scale: 1.0 / critical_load.abs().max(f64::MIN_POSITIVE),
                 initial_arc_length: 0.05,
                 max_arc_length: 0.3,
+                amplitude: (!amplitude_dofs.is_empty()).then_some(AmplitudeControl {
+                    dofs: amplitude_dofs,
+                    max_change: RIKS_MAX_AMPLITUDE_CHANGE * scene.material.thickness,
+                }),
                 ..RiksOptions::default()
             };
             follow_path_riks(problem, start, factor, &options, observer)

@@ -92,3 +92,55 @@ fn long_strip_pade_steps_never_jump_onto_the_unstable_branch() {
 fn long_strip_series_steps_never_jump_onto_the_unstable_branch() {
     strip_stays_on_the_stable_branch("1e-6", false);
 }
+
+/// The path of the long strip at 16 × 8 with `solver.method`.
+fn strip_path_16x8(method: &str) -> Vec<PathPoint> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes/long_strip.toml");
+    let mut scene = Scene::load(&path).unwrap();
+    for setting in [
+        "output.plots=false",
+        "output.vtu=false",
+        "output.surface=false",
+        "mesh.nx=16",
+        "mesh.ny=8",
+        &format!("solver.method={method}"),
+    ] {
+        scene.apply_override(setting).unwrap();
+    }
+    scene.validate().unwrap();
+    let dir = std::env::temp_dir().join(format!(
+        "wrinkle-test-strip-16x8-{method}-{}",
+        std::process::id()
+    ));
+    let _ = std::fs::remove_dir_all(&dir);
+    let report = run(&scene, &dir, true).unwrap();
+    assert!(report.failure.is_none());
+    let _ = std::fs::remove_dir_all(&dir);
+    serde_json::from_value(report.summary["path"].clone()).unwrap()
+}
+
+/// Riks resolves the strip's knee: the arc length, dominated by the in-plane displacements,
+/// once let one step take the physical amplitude from 0.02 to 1.49 thicknesses. Its steps now
+/// change the envelope by at most a quarter thickness (half a thickness of physical amplitude),
+/// and the load where a/h = 1, read from its points, is the ANM's (dense output of its series)
+/// to 1e-4; it was 2 % off with linear interpolation across the long step.
+#[test]
+fn long_strip_riks_resolves_the_knee_and_agrees_with_the_anm() {
+    let riks = strip_path_16x8("riks");
+    let anm = strip_path_16x8("anm");
+    for pair in riks.windows(2) {
+        let change = (pair[1].max_amplitude_over_h - pair[0].max_amplitude_over_h).abs();
+        assert!(
+            change <= 0.5 + 1e-9,
+            "a Riks step changed a/h by {change}: {:?} -> {:?}",
+            (pair[0].lambda, pair[0].max_amplitude_over_h),
+            (pair[1].lambda, pair[1].max_amplitude_over_h)
+        );
+    }
+    let riks_load = wrinkle::bench::load_at_amplitude(&riks, 1.0).unwrap();
+    let anm_load = wrinkle::bench::load_at_amplitude(&anm, 1.0).unwrap();
+    assert!(
+        (riks_load - anm_load).abs() < 1e-4 * anm_load,
+        "λ(a/h = 1): Riks {riks_load}, ANM {anm_load}"
+    );
+}

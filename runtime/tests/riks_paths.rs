@@ -13,7 +13,9 @@ use wrinkle_runtime::linear::SparseFactorization;
 use wrinkle_runtime::problem::Problem;
 use wrinkle_runtime::solve::SolveError;
 use wrinkle_runtime::solve::path::{PathControl, PathEvent, PathState, PathStop};
-use wrinkle_runtime::solve::riks::{ArcLengthConstraint, RiksOptions, follow_path_riks};
+use wrinkle_runtime::solve::riks::{
+    AmplitudeControl, ArcLengthConstraint, RiksOptions, follow_path_riks,
+};
 use wrinkle_runtime::{
     Derivative, EnergyModel, FieldRole, JetEntry, ModelSpec, QuadratureRule, Scalar, TermSpec,
 };
@@ -491,6 +493,20 @@ fn invalid_options_and_start_point_are_rejected_without_events() {
             max_iterations: 0,
             ..RiksOptions::default()
         },
+        RiksOptions {
+            amplitude: Some(AmplitudeControl {
+                dofs: vec![0],
+                max_change: 0.0,
+            }),
+            ..RiksOptions::default()
+        },
+        RiksOptions {
+            amplitude: Some(AmplitudeControl {
+                dofs: vec![problem.free_count()],
+                max_change: 1.0,
+            }),
+            ..RiksOptions::default()
+        },
     ];
     for options in &bad_options {
         let mut events = 0;
@@ -559,6 +575,65 @@ fn observer_stops_the_path() {
     assert_eq!(result.statistics.steps, 3);
     let positions = free_positions(&problem);
     assert_on_exact_path(&problem, &positions, &result.last);
+}
+
+/// Largest change of the free dofs `dofs` between consecutive reported points.
+fn largest_step_change(points: &[(usize, PathState)], dofs: &[usize]) -> f64 {
+    points
+        .windows(2)
+        .flat_map(|pair| {
+            dofs.iter()
+                .map(|&i| (pair[1].1.displacement[i] - pair[0].1.displacement[i]).abs())
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The amplitude control bounds every step's change of the monitored dofs (here the last
+/// node's displacement), where the arc length alone lets a step move it four times as far;
+/// the points stay on the exact path and reach the same load.
+#[test]
+fn amplitude_control_bounds_each_steps_change_of_the_monitored_dofs() {
+    let model = NonlinearSpring {
+        k: 2.0,
+        b: 0.0,
+        c: 1.5,
+    };
+    let problem = strip_problem(model, 4);
+    let positions = free_positions(&problem);
+    let end: Vec<usize> = (0..positions.len())
+        .filter(|&i| positions[i] == LENGTH)
+        .collect();
+    let free = RiksOptions {
+        initial_arc_length: 0.2,
+        max_arc_length: 0.5,
+        max_load: Some(6.0),
+        ..RiksOptions::default()
+    };
+    let (_, free_points) = run(&problem, &free);
+    let unbounded = largest_step_change(&free_points, &end);
+    let max_change = unbounded / 4.0;
+    let bounded = RiksOptions {
+        amplitude: Some(AmplitudeControl {
+            dofs: end.clone(),
+            max_change,
+        }),
+        ..free
+    };
+    let (result, points) = run(&problem, &bounded);
+    assert!(
+        matches!(result.stop, PathStop::MaxLoad),
+        "{}",
+        result.stop.describe()
+    );
+    let largest = largest_step_change(&points, &end);
+    assert!(
+        largest <= max_change * (1.0 + 1e-12),
+        "{largest} > {max_change}"
+    );
+    assert!(points.len() > free_points.len());
+    for (_, state) in &points {
+        assert_on_exact_path(&problem, &positions, state);
+    }
 }
 
 #[test]
