@@ -30,7 +30,9 @@ use wrinkle_runtime::solve::anm::{AnmOptions, AnmStep, follow_path_anm};
 use wrinkle_runtime::solve::ellipticity::legendre_hadamard;
 use wrinkle_runtime::solve::newton::{NewtonOptions, newton};
 use wrinkle_runtime::solve::path::{PathControl, PathEvent, PathResult, PathState, PathStop};
-use wrinkle_runtime::solve::riks::{AmplitudeControl, RiksOptions, follow_path_riks};
+use wrinkle_runtime::solve::riks::{
+    AmplitudeControl, RiksOptions, correct_on_arc, follow_path_riks,
+};
 
 /// Path following of a scene, writing its outputs into `output_directory`. Progress goes to
 /// standard error unless `quiet`.
@@ -203,6 +205,8 @@ struct PathRecorder<'a, M: EnergyModel> {
     target: f64,
     vtu_requests: Vec<f64>,
     previous: Option<PathState>,
+    /// The state recorded before `previous` (the start of a Riks path's last step).
+    penultimate: Option<PathState>,
     progress: Progress,
     trace: Trace,
 }
@@ -276,7 +280,7 @@ impl<M: EnergyModel> PathRecorder<'_, M> {
             max_amplitude / h,
             &format!("step {}, λ = {:.6e}", event.step, state.load),
         );
-        self.previous = Some(state.clone());
+        self.penultimate = self.previous.replace(state.clone());
         self.trace.last = Snap {
             load: state.load,
             values,
@@ -410,6 +414,7 @@ impl<'a, M: EnergyModel> PathRecorder<'a, M> {
             target,
             vtu_requests,
             previous: None,
+            penultimate: None,
             progress,
             trace: Trace {
                 points: Vec::new(),
@@ -447,7 +452,7 @@ fn trace_path<M: EnergyModel>(
     let mut recorder = PathRecorder::new(scene, problem, layout, threshold, &start, quiet);
     let max_load = (scene.solver.max_load > 0.0).then_some(scene.solver.max_load);
     let mut anm_steps = Vec::new();
-    let result = {
+    let mut result = {
         let mut observer = |event: &PathEvent| recorder.observe(event);
         follow(
             scene,
@@ -462,6 +467,10 @@ fn trace_path<M: EnergyModel>(
             &mut anm_steps,
         )
     };
+    if matches!(result.stop, PathStop::Observer) && !recorder.trace.interrupted {
+        let options = riks_options(scene, problem, layout, max_load, threshold.critical_load());
+        land_on_target(problem, factor, &mut recorder, &mut result, &options);
+    }
     let stop = if recorder.trace.interrupted {
         "interrupted by the user".to_string()
     } else if recorder.trace.passed_perfect_bifurcation.is_some() {
@@ -541,36 +550,158 @@ fn follow<M: EnergyModel>(
             follow_path_anm(problem, start, factor, &options, observer, anm_steps)
         }
         PathMethod::Riks => {
-            // A dimensionless arc length, in units of the linear response to λ_c (displacements)
-            // and of λ_c (load), so that the step count does not grow with the mesh; the steps
-            // adapt to the Newton iterations up to 0.3 of it. A step that converges past the
-            // sharp turn of the imperfect branch at the threshold, onto the unstable fundamental
-            // branch, is caught by the crossing guard (negative pivots at its end) and halved.
-            // The arc length hardly sees wrinkles beside the in-plane displacements: a step
-            // may change the deflection (envelope) fields by at most a quarter thickness, so
-            // that the knee of the response is resolved.
-            let dofs = problem.dofs();
-            let fields = layout.deflection_fields();
-            let amplitude_dofs: Vec<usize> = (0..dofs.node_count)
-                .flat_map(|node| fields.iter().filter_map(move |&f| dofs.free(node, f)))
-                .collect();
-            let options = RiksOptions {
-                tolerance: scene.solver.tolerance,
-                max_steps: scene.solver.max_steps,
-                max_load,
-                reference_load: Some(critical_load).filter(|l| *l != 0.0 && l.is_finite()),
-                load_scale: 1.0 / critical_load.abs().max(f64::MIN_POSITIVE),
-                initial_arc_length: 0.05,
-                max_arc_length: 0.3,
-                amplitude: (!amplitude_dofs.is_empty()).then_some(AmplitudeControl {
-                    dofs: amplitude_dofs,
-                    max_change: RIKS_MAX_AMPLITUDE_CHANGE * scene.material.thickness,
-                }),
-                ..RiksOptions::default()
-            };
+            let options = riks_options(scene, problem, layout, max_load, critical_load);
             follow_path_riks(problem, start, factor, &options, observer)
         }
     }
+}
+
+/// Newton–Riks settings of `wrinkle run`.
+///
+/// A dimensionless arc length, in units of the linear response to λ_c (displacements) and of
+/// λ_c (load), so that the step count does not grow with the mesh; the steps adapt to the
+/// Newton iterations up to 0.3 of it. A step that converges past the sharp turn of the
+/// imperfect branch at the threshold, onto the unstable fundamental branch, is caught by the
+/// crossing guard (negative pivots at its end) and halved. The arc length hardly sees wrinkles
+/// beside the in-plane displacements: a step may change the deflection (envelope) fields by at
+/// most a quarter thickness, so that the knee of the response is resolved.
+fn riks_options<M: EnergyModel>(
+    scene: &Scene,
+    problem: &Problem<M>,
+    layout: &Layout,
+    max_load: Option<f64>,
+    critical_load: f64,
+) -> RiksOptions {
+    let dofs = problem.dofs();
+    let fields = layout.deflection_fields();
+    let amplitude_dofs: Vec<usize> = (0..dofs.node_count)
+        .flat_map(|node| fields.iter().filter_map(move |&f| dofs.free(node, f)))
+        .collect();
+    RiksOptions {
+        tolerance: scene.solver.tolerance,
+        max_steps: scene.solver.max_steps,
+        max_load,
+        reference_load: Some(critical_load).filter(|l| *l != 0.0 && l.is_finite()),
+        load_scale: 1.0 / critical_load.abs().max(f64::MIN_POSITIVE),
+        initial_arc_length: 0.05,
+        max_arc_length: 0.3,
+        amplitude: (!amplitude_dofs.is_empty()).then_some(AmplitudeControl {
+            dofs: amplitude_dofs,
+            max_change: RIKS_MAX_AMPLITUDE_CHANGE * scene.material.thickness,
+        }),
+        ..RiksOptions::default()
+    }
+}
+
+/// Relative distance above the amplitude target within which a path's last point is taken as
+/// landed on it.
+const LANDING_TOLERANCE: f64 = 1e-3;
+
+/// Arc-length corrections tried to land a path's last point on the amplitude target.
+const MAX_LANDING_CORRECTIONS: usize = 8;
+
+/// Moves a path's last point, which overshot the amplitude target, back onto it. The path
+/// stops at its first recorded point past the target: Riks' step end (up to half a thickness
+/// past it), or the ANM's next dense-output point (2.6 % past it on the default scene). The
+/// landing takes equilibrium points on spheres about the last point below the target
+/// ([`correct_on_arc`]) through the chord between the bracketing points, the bracket narrowed
+/// by regula falsi (Illinois), until the point's $`\max|w|/h`$ lies within
+/// [`LANDING_TOLERANCE`] above the target. The landed point replaces the overshooting one in
+/// the recorded path; if no correction lands, the path is left as it was.
+fn land_on_target<M: EnergyModel>(
+    problem: &Problem<M>,
+    factor: &mut SparseFactorization,
+    recorder: &mut PathRecorder<'_, M>,
+    result: &mut PathResult,
+    options: &RiksOptions,
+) {
+    let clock = Instant::now();
+    let target = recorder.target;
+    let h = recorder.scene.material.thickness;
+    let (Some(start), Some(end), Some(last_point)) = (
+        recorder.penultimate.clone(),
+        recorder.previous.clone(),
+        recorder.trace.points.last().cloned(),
+    ) else {
+        return;
+    };
+    let amplitude = |recorder: &PathRecorder<'_, M>, state: &PathState| {
+        let values = problem.dofs().expand(&state.displacement, state.load);
+        recorder.snapshot(&values).max_amplitude() / h
+    };
+    let overshoot = last_point.max_amplitude_over_h;
+    let below = amplitude(recorder, &start);
+    if !(overshoot > target * (1.0 + LANDING_TOLERANCE) && below < target) {
+        return;
+    }
+    // Aim at the middle of the accepted window [target, target (1 + tolerance)].
+    let aim = target * (1.0 + 0.5 * LANDING_TOLERANCE);
+    let mut low = (below - aim, start.clone());
+    let mut high = (overshoot - aim, end);
+    let mut landed = None;
+    let mut side = 0;
+    for _ in 0..MAX_LANDING_CORRECTIONS {
+        let fraction = low.0 / (low.0 - high.0);
+        let predicted = PathState {
+            displacement: low
+                .1
+                .displacement
+                .iter()
+                .zip(&high.1.displacement)
+                .map(|(a, b)| a + fraction * (b - a))
+                .collect(),
+            load: low.1.load + fraction * (high.1.load - low.1.load),
+        };
+        let Ok(corrected) = correct_on_arc(
+            problem,
+            factor,
+            &start,
+            &predicted,
+            options,
+            &mut result.statistics,
+        ) else {
+            break;
+        };
+        let value = amplitude(recorder, &corrected.state) - aim;
+        if value.abs() <= 0.5 * LANDING_TOLERANCE * target {
+            landed = Some(corrected);
+            break;
+        }
+        // Illinois: halve the stale end's value when the same end is kept twice.
+        if value > 0.0 {
+            high = (value, corrected.state);
+            if side == 1 {
+                low.0 *= 0.5;
+            }
+            side = 1;
+        } else {
+            low = (value, corrected.state);
+            if side == -1 {
+                high.0 *= 0.5;
+            }
+            side = -1;
+        }
+    }
+    result.statistics.total_seconds += clock.elapsed().as_secs_f64();
+    let Some(landed) = landed else {
+        return;
+    };
+    // Forget what the overshooting point recorded, then record the landed point instead.
+    let trace = &mut recorder.trace;
+    trace.points.pop();
+    trace
+        .profiles
+        .retain(|profile| profile.load != last_point.lambda);
+    recorder.previous = Some(start);
+    let event = PathEvent {
+        step: last_point.step,
+        interior: false,
+        state: &landed.state,
+        relative_residual: landed.relative_residual,
+        predicted_bifurcation: None,
+    };
+    recorder.observe(&event);
+    result.last = landed.state;
 }
 
 #[cfg(test)]
