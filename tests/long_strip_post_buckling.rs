@@ -19,29 +19,43 @@
 
 use std::path::Path;
 use wrinkle::output::PathPoint;
+use wrinkle::results::RunReport;
 use wrinkle::run::run;
 use wrinkle::scene::Scene;
 
-fn strip_stays_on_the_stable_branch(perturbation: &str, pade: bool) {
+/// `wrinkle run` of the long strip with `settings` (and no plots or VTU files) into a
+/// temporary directory named after `name`, which is removed; the run must not fail.
+fn run_strip(name: &str, settings: &[&str]) -> (Scene, RunReport) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes/long_strip.toml");
     let mut scene = Scene::load(&path).unwrap();
     for setting in [
         "output.plots=false",
         "output.vtu=false",
         "output.surface=false",
-        &format!("solver.perturbation={perturbation}"),
-        &format!("solver.pade={pade}"),
-    ] {
+    ]
+    .iter()
+    .chain(settings)
+    {
         scene.apply_override(setting).unwrap();
     }
     scene.validate().unwrap();
-    let dir = std::env::temp_dir().join(format!(
-        "wrinkle-test-strip-{perturbation}-{pade}-{}",
-        std::process::id()
-    ));
+    let dir =
+        std::env::temp_dir().join(format!("wrinkle-test-strip-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     let report = run(&scene, &dir, true).unwrap();
     assert!(report.failure.is_none());
+    let _ = std::fs::remove_dir_all(&dir);
+    (scene, report)
+}
+
+fn strip_stays_on_the_stable_branch(perturbation: &str, pade: bool) {
+    let (scene, report) = run_strip(
+        &format!("{perturbation}-{pade}"),
+        &[
+            &format!("solver.perturbation={perturbation}"),
+            &format!("solver.pade={pade}"),
+        ],
+    );
     let summary = &report.summary;
 
     let steps = summary["anm_steps"].as_array().unwrap();
@@ -77,7 +91,6 @@ fn strip_stays_on_the_stable_branch(perturbation: &str, pade: bool) {
         "{}",
         last.lambda
     );
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
@@ -95,27 +108,14 @@ fn long_strip_series_steps_never_jump_onto_the_unstable_branch() {
 
 /// The path of the long strip at 16 × 8 with `solver.method`.
 fn strip_path_16x8(method: &str) -> Vec<PathPoint> {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes/long_strip.toml");
-    let mut scene = Scene::load(&path).unwrap();
-    for setting in [
-        "output.plots=false",
-        "output.vtu=false",
-        "output.surface=false",
-        "mesh.nx=16",
-        "mesh.ny=8",
-        &format!("solver.method={method}"),
-    ] {
-        scene.apply_override(setting).unwrap();
-    }
-    scene.validate().unwrap();
-    let dir = std::env::temp_dir().join(format!(
-        "wrinkle-test-strip-16x8-{method}-{}",
-        std::process::id()
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    let report = run(&scene, &dir, true).unwrap();
-    assert!(report.failure.is_none());
-    let _ = std::fs::remove_dir_all(&dir);
+    let (_, report) = run_strip(
+        &format!("16x8-{method}"),
+        &[
+            "mesh.nx=16",
+            "mesh.ny=8",
+            &format!("solver.method={method}"),
+        ],
+    );
     serde_json::from_value(report.summary["path"].clone()).unwrap()
 }
 
