@@ -107,6 +107,8 @@ pub struct Trace {
     /// path stays on the fundamental branch, unstable beyond the bifurcation, and never reaches
     /// an amplitude target.
     pub passed_perfect_bifurcation: Option<f64>,
+    /// Loads of `output.vtu_loads` the path did not reach (no `fields_load_*.vtu` for them).
+    pub unreached_vtu_loads: Vec<f64>,
     /// Seconds in the Legendre–Hadamard checks of the step ends (part of
     /// `recording_seconds`).
     pub ellipticity_seconds: f64,

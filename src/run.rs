@@ -432,6 +432,7 @@ impl<'a, M: EnergyModel> PathRecorder<'a, M> {
                 last: Snap::default(),
                 interrupted: false,
                 passed_perfect_bifurcation: None,
+                unreached_vtu_loads: Vec::new(),
                 ellipticity_seconds: 0.0,
                 recording_seconds: 0.0,
             },
@@ -482,6 +483,7 @@ fn trace_path<M: EnergyModel>(
         .progress
         .finish(&format!("{stop} ({} steps)", result.statistics.steps));
     let mut trace = recorder.trace;
+    trace.unreached_vtu_loads = recorder.vtu_requests;
     if scene.output.vtu {
         for snap in trace.requested.iter_mut().chain([&mut trace.last]) {
             snap.stress_resultants = stress_resultants(problem, layout, &snap.values);
@@ -686,12 +688,23 @@ fn land_on_target<M: EnergyModel>(
     let Some(landed) = landed else {
         return;
     };
-    // Forget what the overshooting point recorded, then record the landed point instead.
+    // Forget what the overshooting point recorded (its point, the profiles it captured, the
+    // requested states it interpolated, which go back to the requests), then record the
+    // landed point instead: it takes back the requests up to its load.
     let trace = &mut recorder.trace;
     trace.points.pop();
     trace
         .profiles
         .retain(|profile| profile.load != last_point.lambda);
+    let beyond = |snap: &Snap| snap.load > start.load;
+    let returned: Vec<f64> = trace
+        .requested
+        .iter()
+        .filter(|snap| beyond(snap))
+        .map(|snap| snap.load)
+        .collect();
+    trace.requested.retain(|snap| !beyond(snap));
+    recorder.vtu_requests.splice(0..0, returned);
     recorder.previous = Some(start);
     let event = PathEvent {
         step: last_point.step,

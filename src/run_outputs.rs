@@ -139,7 +139,12 @@ pub fn write_run(
     files.push(summary_path);
     let mut summary_text = summary_table.to_text();
     for warning in &report.warnings {
-        summary_text.push_str(&format!("warning: {}: {}\n", warning.title, warning.detail));
+        summary_text.push_str(&format!(
+            "{}: {}: {}\n",
+            warning.severity.label(),
+            warning.title,
+            warning.detail
+        ));
     }
     let failure = match &outcome {
         RunOutcome::Failed(reason) => Some(reason.clone()),
@@ -664,7 +669,27 @@ fn warnings(context: &RunContext, trace: &Trace) -> Vec<Warning> {
         ));
     }
     for note in &context.threshold.notes {
-        warnings.push(Warning::new(Severity::Note, "note", note.clone()));
+        warnings.push(Warning::new(Severity::Note, "threshold", note.clone()));
+    }
+    if !trace.unreached_vtu_loads.is_empty() {
+        let load = context.load_quantity();
+        let loads: Vec<String> = trace
+            .unreached_vtu_loads
+            .iter()
+            .map(|&l| load.format_value(l))
+            .collect();
+        let end = trace.points.last().map_or_else(String::new, |p| {
+            format!(" at λ = {}", load.format_value(p.lambda))
+        });
+        warnings.push(Warning::new(
+            Severity::Note,
+            "output.vtu_loads",
+            format!(
+                "λ = {} not reached (the path ended{end}): no fields_load_*.vtu written for {}",
+                loads.join(", "),
+                if loads.len() == 1 { "it" } else { "them" }
+            ),
+        ));
     }
     for warning in &trace.result.warnings {
         warnings.push(Warning::new(Severity::Warning, "solver", warning.clone()));
@@ -784,6 +809,7 @@ fn summary_json(context: &RunContext, trace: &Trace, outcome: &RunOutcome) -> se
             "negative_pivots": s.negative_pivots, "completed": s.completed,
         })).collect::<Vec<_>>(),
         "vtu": vtu_files(context.scene, trace),
+        "unreached_vtu_loads": trace.unreached_vtu_loads,
         "path": trace.points,
         "scene": context.scene.echo_json(),
     })

@@ -302,7 +302,8 @@ fn cell_array(piece: &vtkio::model::UnstructuredGridPiece, name: &str) -> Vec<f6
 /// The stress resultants `wrinkle run` stores per element (N_X = ∂ψ/∂u_X, N_Y = ∂ψ/∂v_Y,
 /// N_XY = ∂ψ/∂u_Y) balance the applied edge loads: uniform N_X = −λ, N_Y = 10 N/mm before
 /// buckling; after it, N_X varies over the wrinkled zone but its mean over the (uniform) mesh is
-/// still −λ, the mean of N_Y is still N_Y, and N_XY averages to zero.
+/// still −λ, the mean of N_Y is still N_Y, and N_XY averages to zero. A requested load the
+/// path does not reach (1 N/mm) gets no file, is listed in `summary.json` and named in a note.
 #[test]
 fn stress_resultants_in_run_vtu_balance_the_applied_loads() {
     let dir = scratch_dir("resultants");
@@ -311,7 +312,7 @@ fn stress_resultants_in_run_vtu_balance_the_applied_loads() {
         .args(["--set", "solver.max_amplitude_over_h=2"])
         .args([
             "--set",
-            "output.vtu_loads=[0.05]",
+            "output.vtu_loads=[0.05, 1.0]",
             "--set",
             "output.plots=false",
         ])
@@ -323,6 +324,15 @@ fn stress_resultants_in_run_vtu_balance_the_applied_loads() {
         "{}",
         String::from_utf8_lossy(&output.stderr)
     );
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        stdout.contains("note: output.vtu_loads: λ = 1.0000 N/mm not reached"),
+        "{stdout}"
+    );
+    assert!(!dir.join("fields_load_1.000000.vtu").exists());
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["unreached_vtu_loads"], serde_json::json!([1.0]));
     let mean = |values: &[f64]| values.iter().sum::<f64>() / values.len() as f64;
     let before = read_piece(&dir.join("fields_load_0.050000.vtu"));
     for (name, expected) in [("N_X", -0.05), ("N_Y", 10.0), ("N_XY", 0.0)] {

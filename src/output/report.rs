@@ -227,6 +227,17 @@ pub enum Severity {
     Failure,
 }
 
+impl Severity {
+    /// `note`, `warning` or `failure`: the terminal line's prefix and the report's CSS class.
+    pub fn label(self) -> &'static str {
+        match self {
+            Severity::Note => "note",
+            Severity::Warning => "warning",
+            Severity::Failure => "failure",
+        }
+    }
+}
+
 /// A warning shown prominently near the top of the report.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Warning {
@@ -375,11 +386,7 @@ fn push_warnings(html: &mut String, warnings: &[Warning]) {
     }
     html.push_str("<section class=\"warnings\">\n<h2>Warnings</h2>\n");
     for warning in warnings {
-        let class = match warning.severity {
-            Severity::Note => "note",
-            Severity::Warning => "warning",
-            Severity::Failure => "failure",
-        };
+        let class = warning.severity.label();
         html.push_str(&format!(
             "<div class=\"{class}\"><strong>{}</strong>",
             escape(&warning.title)
