@@ -468,9 +468,25 @@ fn trace_path<M: EnergyModel>(
             &mut anm_steps,
         )
     };
-    if matches!(result.stop, PathStop::Observer) && !recorder.trace.interrupted {
+    // The ANM stops at `max_load` exactly (its series is evaluated there); Riks at its first
+    // step end past it.
+    let landing = match (&result.stop, scene.solver.method, max_load) {
+        (PathStop::Observer, _, _) => Some(Landing::Amplitude),
+        (PathStop::MaxLoad, PathMethod::Riks, Some(load)) => Some(Landing::Load(load)),
+        _ => None,
+    };
+    if let Some(landing) = landing
+        && !recorder.trace.interrupted
+    {
         let options = riks_options(scene, problem, layout, max_load, threshold.critical_load());
-        land_on_target(problem, factor, &mut recorder, &mut result, &options);
+        land_on_target(
+            problem,
+            factor,
+            &mut recorder,
+            &mut result,
+            &options,
+            landing,
+        );
     }
     let stop = if recorder.trace.interrupted {
         "interrupted by the user".to_string()
@@ -599,6 +615,18 @@ fn riks_options<M: EnergyModel>(
 /// landed on it.
 const LANDING_TOLERANCE: f64 = 1e-3;
 
+/// The same for `solver.max_load`, which the ANM meets exactly.
+const LOAD_LANDING_TOLERANCE: f64 = 1e-9;
+
+/// What a path's last point is moved back onto ([`land_on_target`]).
+#[derive(Clone, Copy, Debug)]
+enum Landing {
+    /// The amplitude target `solver.max_amplitude_over_h` (in $`\max|w|/h`$).
+    Amplitude,
+    /// `solver.max_load` (Riks: its last step end passed it).
+    Load(f64),
+}
+
 /// Arc-length corrections tried to land a path's last point on the amplitude target.
 const MAX_LANDING_CORRECTIONS: usize = 8;
 
@@ -609,16 +637,21 @@ const MAX_LANDING_CORRECTIONS: usize = 8;
 /// ([`correct_on_arc`]) through the chord between the bracketing points, the bracket narrowed
 /// by regula falsi (Illinois), until the point's $`\max|w|/h`$ lies within
 /// [`LANDING_TOLERANCE`] above the target. The landed point replaces the overshooting one in
-/// the recorded path; if no correction lands, the path is left as it was.
+/// the recorded path; if no correction lands, the path is left as it was. A Riks path stopped
+/// by `solver.max_load` lands on that load the same way ([`Landing::Load`]).
 fn land_on_target<M: EnergyModel>(
     problem: &Problem<M>,
     factor: &mut SparseFactorization,
     recorder: &mut PathRecorder<'_, M>,
     result: &mut PathResult,
     options: &RiksOptions,
+    landing: Landing,
 ) {
     let clock = Instant::now();
-    let target = recorder.target;
+    let (target, tolerance) = match landing {
+        Landing::Amplitude => (recorder.target, LANDING_TOLERANCE),
+        Landing::Load(load) => (load, LOAD_LANDING_TOLERANCE),
+    };
     let h = recorder.scene.material.thickness;
     let (Some(start), Some(end), Some(last_point)) = (
         recorder.penultimate.clone(),
@@ -627,17 +660,21 @@ fn land_on_target<M: EnergyModel>(
     ) else {
         return;
     };
-    let amplitude = |recorder: &PathRecorder<'_, M>, state: &PathState| {
-        let values = problem.dofs().expand(&state.displacement, state.load);
-        recorder.snapshot(&values).max_amplitude() / h
+    let measure = |recorder: &PathRecorder<'_, M>, state: &PathState| match landing {
+        Landing::Amplitude => {
+            let values = problem.dofs().expand(&state.displacement, state.load);
+            recorder.snapshot(&values).max_amplitude() / h
+        }
+        Landing::Load(_) => state.load,
     };
-    let overshoot = last_point.max_amplitude_over_h;
-    let below = amplitude(recorder, &start);
-    if !(overshoot > target * (1.0 + LANDING_TOLERANCE) && below < target) {
+    let overshoot = measure(recorder, &end);
+    let below = measure(recorder, &start);
+    let window = tolerance * target.abs();
+    if !(overshoot > target + window && below < target) {
         return;
     }
-    // Aim at the middle of the accepted window [target, target (1 + tolerance)].
-    let aim = target * (1.0 + 0.5 * LANDING_TOLERANCE);
+    // Aim at the middle of the accepted window [target, target + window].
+    let aim = target + 0.5 * window;
     let mut low = (below - aim, start.clone());
     let mut high = (overshoot - aim, end);
     let mut landed = None;
@@ -664,8 +701,8 @@ fn land_on_target<M: EnergyModel>(
         ) else {
             break;
         };
-        let value = amplitude(recorder, &corrected.state) - aim;
-        if value.abs() <= 0.5 * LANDING_TOLERANCE * target {
+        let value = measure(recorder, &corrected.state) - aim;
+        if value.abs() <= 0.5 * window {
             landed = Some(corrected);
             break;
         }

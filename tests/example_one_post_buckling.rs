@@ -382,6 +382,40 @@ fn the_perfect_problem_stops_past_the_threshold_and_says_why() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// The ANM's and Riks' values (in that order) agree to `tolerance` relative.
+fn assert_close_pair(values: &[f64], tolerance: f64, what: &str) {
+    assert!(
+        (values[0] - values[1]).abs() < tolerance * values[0].abs(),
+        "{what}: ANM {}, Riks {}",
+        values[0],
+        values[1]
+    );
+}
+
+/// `wrinkle run` of example 1 at 16 × 8 (N = 15) with `method` and `setting`: the summary and
+/// the last path point.
+fn last_point_16x8(method: &str, setting: &str) -> (serde_json::Value, PathPoint) {
+    let settings = [
+        "mesh.nx=16",
+        "mesh.ny=8",
+        "solver.order=15",
+        setting,
+        "output.plots=false",
+        "output.vtu=false",
+        "output.surface=false",
+        &format!("solver.method={method}"),
+    ];
+    let dir = output_directory(&format!(
+        "last-point-{method}-{}",
+        setting.replace(['.', '='], "-")
+    ));
+    let report = run(&scene(&settings), &dir, true).unwrap();
+    assert!(report.failure.is_none());
+    let _ = std::fs::remove_dir_all(&dir);
+    let last = path_of(&report.summary).pop().unwrap();
+    (report.summary, last)
+}
+
 /// A path stops at its first recorded point past the amplitude target — Riks' step end, the
 /// ANM's next dense-output point — and that point is moved back onto the target by
 /// arc-length corrections. Both methods then end within 1e-3 above a/h = 2, at equilibrium,
@@ -391,21 +425,7 @@ fn the_perfect_problem_stops_past_the_threshold_and_says_why() {
 fn both_methods_land_on_the_amplitude_target_at_the_same_load() {
     let mut ends = Vec::new();
     for method in ["anm", "riks"] {
-        let settings = [
-            "mesh.nx=16",
-            "mesh.ny=8",
-            "solver.order=15",
-            "solver.max_amplitude_over_h=2",
-            "output.plots=false",
-            "output.vtu=false",
-            "output.surface=false",
-            &format!("solver.method={method}"),
-        ];
-        let dir = output_directory(&format!("landing-{method}"));
-        let report = run(&scene(&settings), &dir, true).unwrap();
-        assert!(report.failure.is_none());
-        let points = path_of(&report.summary);
-        let last = points.last().unwrap();
+        let (_, last) = last_point_16x8(method, "solver.max_amplitude_over_h=2");
         assert!(
             (2.0..=2.002).contains(&last.max_amplitude_over_h),
             "{method}: last a/h = {}",
@@ -416,12 +436,27 @@ fn both_methods_land_on_the_amplitude_target_at_the_same_load() {
             "{method}: {last:?}"
         );
         ends.push(last.lambda);
-        let _ = std::fs::remove_dir_all(&dir);
     }
-    assert!(
-        (ends[0] - ends[1]).abs() < 1e-4 * ends[0],
-        "end loads: ANM {}, Riks {}",
-        ends[0],
-        ends[1]
-    );
+    assert_close_pair(&ends, 1e-4, "end loads");
+}
+
+/// With `solver.max_load` the ANM stops at that load exactly (its series is evaluated there)
+/// and Riks at its first step end past it, which is moved back by arc-length corrections: both
+/// end at λ = 0.1 N/mm to 1e-9, at equilibrium, with the same amplitude (1e-6 apart). Riks
+/// used to end at λ = 0.10012 here (0.1004 at 32 × 16).
+#[test]
+fn both_methods_stop_at_max_load_with_the_same_amplitude() {
+    let mut amplitudes = Vec::new();
+    for method in ["anm", "riks"] {
+        let (summary, last) = last_point_16x8(method, "solver.max_load=0.1");
+        assert_eq!(summary["stop"], "maximum load reached", "{method}");
+        assert!(
+            (0.1..=0.1 * (1.0 + 1e-9)).contains(&last.lambda),
+            "{method}: last λ = {}",
+            last.lambda
+        );
+        assert!(last.residual <= 1e-6, "{method}: {last:?}");
+        amplitudes.push(last.max_amplitude_over_h);
+    }
+    assert_close_pair(&amplitudes, 1e-5, "a/h at max_load");
 }
