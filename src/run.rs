@@ -453,12 +453,14 @@ fn trace_path<M: EnergyModel>(
     let mut recorder = PathRecorder::new(scene, problem, layout, threshold, &start, quiet);
     let max_load = (scene.solver.max_load > 0.0).then_some(scene.solver.max_load);
     let mut anm_steps = Vec::new();
+    // Riks' settings: its path, and the arc-length corrections of the landing (either method).
+    let riks = riks_options(scene, problem, layout, max_load, threshold.critical_load());
     let mut result = {
         let mut observer = |event: &PathEvent| recorder.observe(event);
         follow(
             scene,
             problem,
-            layout,
+            &riks,
             factor,
             start,
             max_load,
@@ -478,15 +480,7 @@ fn trace_path<M: EnergyModel>(
     if let Some(landing) = landing
         && !recorder.trace.interrupted
     {
-        let options = riks_options(scene, problem, layout, max_load, threshold.critical_load());
-        land_on_target(
-            problem,
-            factor,
-            &mut recorder,
-            &mut result,
-            &options,
-            landing,
-        );
+        land_on_target(problem, factor, &mut recorder, &mut result, &riks, landing);
     }
     let stop = if recorder.trace.interrupted {
         "interrupted by the user".to_string()
@@ -537,7 +531,7 @@ fn stress_resultants<M: EnergyModel>(
 fn follow<M: EnergyModel>(
     scene: &Scene,
     problem: &Problem<M>,
-    layout: &Layout,
+    riks: &RiksOptions,
     factor: &mut SparseFactorization,
     start: PathState,
     max_load: Option<f64>,
@@ -567,10 +561,7 @@ fn follow<M: EnergyModel>(
             };
             follow_path_anm(problem, start, factor, &options, observer, anm_steps)
         }
-        PathMethod::Riks => {
-            let options = riks_options(scene, problem, layout, max_load, critical_load);
-            follow_path_riks(problem, start, factor, &options, observer)
-        }
+        PathMethod::Riks => follow_path_riks(problem, start, factor, riks, observer),
     }
 }
 
@@ -627,7 +618,7 @@ enum Landing {
     Load(f64),
 }
 
-/// Arc-length corrections tried to land a path's last point on the amplitude target.
+/// Arc-length corrections tried to land a path's last point on its target.
 const MAX_LANDING_CORRECTIONS: usize = 8;
 
 /// Moves a path's last point, which overshot the amplitude target, back onto it. The path

@@ -437,11 +437,11 @@ fn search_wavenumber<M: EnergyModel>(
         };
         progress.evaluation(count, &detail);
     };
-    let poisson_hint = format!("{}{}", direction_hint(scene), poisson_hint(scene));
+    let hints = format!("{}{}", direction_hint(scene), poisson_hint(scene));
     let fail = |e: String| {
         Error::Solver(format!(
             "wavenumber search of `{}` over Q in [{:.3e}, {:.3e}] 1/mm (wavelengths from {:.3e} to {:.3e} mm): {e}. \
-             Hint: check that the load compresses the sheet and that the thickness and tension are physical.{poisson_hint}",
+             Hint: check that the load compresses the sheet and that the thickness and tension are physical.{hints}",
             M::SPEC.name,
             range.0,
             range.1,
@@ -509,9 +509,6 @@ fn long_wavelength_end_note(scene: &Scene, q: f64) -> String {
     )
 }
 
-/// A hint for auxetic sheets, $`\nu \le -0.9`$ (empty otherwise): the in-plane problem is nearly
-/// singular there and Newton stalls at round-off; measured on example 1 at 32 × 16, ν = −0.99
-/// is solved and ν = −0.999 stalls at a relative residual of 1.2e-6 (tolerance 1e-8).
 /// A hint when the wave vector (`model.direction`) is far from the direction the load
 /// compresses: along X for the biaxial load ($`\lambda = -N_X`$), along Y for the strip (the
 /// transverse compression near its middle). An envelope model then sees no compression along
@@ -543,6 +540,9 @@ fn direction_hint(scene: &Scene) -> String {
     }
 }
 
+/// A hint for auxetic sheets, $`\nu \le -0.9`$ (empty otherwise): the in-plane problem is nearly
+/// singular there and Newton stalls at round-off; measured on example 1 at 32 × 16, ν = −0.99
+/// is solved and ν = −0.999 stalls at a relative residual of 1.2e-6 (tolerance 1e-8).
 fn poisson_hint(scene: &Scene) -> String {
     let nu = scene.material.poisson_ratio;
     if nu <= -0.9 {

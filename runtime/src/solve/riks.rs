@@ -427,6 +427,8 @@ fn trace<M: EnergyModel>(
     // Whether the factorisation in hand is the tangent at `current` (the start's, or the
     // previous step's end check), so that the step does not factorise it again.
     let mut start_factorized = false;
+    // The load tangent at the start when the arc-length scale has solved for it already.
+    let mut start_tangent = None;
     let normalized;
     let options = match options.reference_load {
         None => options,
@@ -435,7 +437,11 @@ fn trace<M: EnergyModel>(
                 .factorize(&start.displacement, start.load)
                 .and_then(|()| linearization.load_tangent(&start.displacement, start.load));
             let scale = match response {
-                Ok(tangent) => reference.abs() * dot(&tangent, &tangent).sqrt(),
+                Ok(tangent) => {
+                    let scale = reference.abs() * dot(&tangent, &tangent).sqrt();
+                    start_tangent = Some(tangent);
+                    scale
+                }
                 Err(source) => {
                     let context = format!(
                         "Newton–Riks at load {:.6e}: singular tangent at the start point (no \
@@ -490,8 +496,11 @@ fn trace<M: EnergyModel>(
             .as_ref()
             .ok()
             .and_then(|()| linearization.factor.negative_pivots());
-        let tangent = factorized
-            .and_then(|()| linearization.load_tangent(&current.displacement, current.load));
+        let tangent = match start_tangent.take() {
+            Some(tangent) => Ok(tangent),
+            None => factorized
+                .and_then(|()| linearization.load_tangent(&current.displacement, current.load)),
+        };
         let (mut direction, mut load_direction) = match (tangent, &previous) {
             (Ok(mut displacement_tangent), _) => {
                 let sign = previous
