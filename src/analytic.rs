@@ -6,9 +6,9 @@
 //! [`AnalyticReport::to_json`] and [`AnalyticReport::summary`] print it. The meaning, unit and
 //! equation of every JSON key is listed in `docs/analytic.md`.
 
-use crate::Error;
 use crate::closed_form::stress_function::{self, StressFunctionConvergence};
 use crate::closed_form::{self, ClampedRectangle, GalerkinIntegrals};
+use crate::error::Error;
 use crate::scene::{LoadKind, Scene, Wavenumber};
 use serde_json::{Value, json};
 use std::fmt::Write as _;

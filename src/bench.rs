@@ -32,7 +32,7 @@
 
 mod plot;
 
-use crate::Error;
+use crate::error::Error;
 use crate::output::{PathPoint, write_bytes_atomically, write_json};
 use crate::run::{RunOutcome, run};
 use crate::scene::{PathMethod, Scene, Wavenumber};

@@ -3,10 +3,10 @@
 //! Every failure prints one line `error: …` on stderr and exits with [`Error::exit_code`]
 //! (2 for scene and usage errors, 1 for solver failures); usage errors found by clap exit with 2.
 
-use crate::Error;
 use crate::analytic;
 use crate::closed_form;
 use crate::commands;
+use crate::error::Error;
 use crate::scene::{LoadKind, Scene};
 use crate::threshold::Threshold;
 use clap::{Args, Parser, Subcommand};

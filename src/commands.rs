@@ -2,7 +2,7 @@
 //! results; the CLI only parses arguments and prints. Dependencies go one way:
 //! `cli → commands → {threshold, run, compare} → {setup, physics, output}`.
 
-use crate::Error;
+use crate::error::Error;
 use crate::run::{RunOutcome, RunReport};
 use crate::scene::Scene;
 use crate::threshold::{PriorThreshold, Threshold};

@@ -7,8 +7,8 @@
 //! others: its row says why. `MODEL:KEY=VALUE` overrides apply to one model only (a plate
 //! needs a mesh that resolves its wrinkles; an envelope model does not).
 
-use crate::Error;
 use crate::bench::load_at_amplitude;
+use crate::error::Error;
 use crate::output::{
     PathPoint, Quantity, Response, ResponsePoint, plot_comparison, write_bytes_atomically,
     write_json,

@@ -1,5 +1,6 @@
 //! Ctrl-C during `wrinkle run`: the path stops after the point it is computing, and every
-//! output is written from the points completed so far (exit code [`crate::EXIT_INTERRUPTED`]).
+//! output is written from the points completed so far (exit code
+//! [`crate::error::EXIT_INTERRUPTED`]).
 //!
 //! The handler ([`install`]) only sets a flag while a path is being traced or written
 //! ([`PathPhase`]); the path recorder reads it ([`requested`]) after each point. Outside that
@@ -20,7 +21,7 @@ pub fn install() {
             );
         } else {
             eprintln!("\ninterrupted");
-            std::process::exit(crate::EXIT_INTERRUPTED);
+            std::process::exit(crate::error::EXIT_INTERRUPTED);
         }
     });
 }

@@ -30,7 +30,7 @@ impl RunOutcome {
             RunOutcome::Failed(_) => 1,
             RunOutcome::Incomplete(_) => 3,
             RunOutcome::Invalid(_) => 4,
-            RunOutcome::Interrupted(_) => crate::EXIT_INTERRUPTED,
+            RunOutcome::Interrupted(_) => crate::error::EXIT_INTERRUPTED,
         }
     }
 

@@ -10,7 +10,7 @@
 //! equilibrium at $`\lambda = 0`$ with the ANM or Riks. The solver never writes files: a
 //! `PathRecorder` keeps what the outputs need, and [`crate::run_outputs`] writes them.
 
-use crate::Error;
+use crate::error::Error;
 use crate::output::{PathPoint, Progress, ProgressSink, ProgressTarget, Quantity};
 use crate::physics::{Layout, Snapshot};
 pub use crate::results::{RunOutcome, RunReport, Snap, Trace};

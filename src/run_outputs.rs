@@ -4,7 +4,7 @@
 //! [`Trace`] and the [`Threshold`]; the physical deflection is read through the field roles
 //! ([`Snapshot`]).
 
-use crate::Error;
+use crate::error::Error;
 use crate::output::{
     ClosedFormCurve, FieldData, GridField, LoadMarker, PointArray, Profile, ProfilePlot, Quantity,
     Report, ReportFigure, Response, ResponsePoint, RunDirectory, RunSummary, Severity, Warning,

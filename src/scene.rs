@@ -12,8 +12,8 @@
 //!
 //! The reference of every key is `docs/scenes.md`.
 
-use crate::Error;
 use crate::closed_form::ClampedRectangle;
+use crate::error::Error;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::Path;

@@ -10,7 +10,7 @@
 //! * `strip` (example 2): short sides clamped, $`u = 0`$ on `left`, $`u = \lambda`$ on `right`
 //!   (mm), $`v = w = 0`$ on both; long sides free.
 
-use crate::Error;
+use crate::error::Error;
 use crate::physics::Layout;
 use crate::scene::{LoadKind, Scene};
 use std::sync::Arc;

@@ -45,7 +45,7 @@ mod reuse;
 
 pub use reuse::{PriorThreshold, THRESHOLD_SECTIONS};
 
-use crate::Error;
+use crate::error::Error;
 use crate::output::{ProgressSink, SearchProgress};
 use crate::physics::{Layout, Snapshot, wavelength_along_line};
 use crate::scene::{LoadKind, Scene, Wavenumber};

@@ -11,7 +11,7 @@
 //! sections do not enter the threshold). Anything else is a usage error naming the file and the
 //! first key that differs (exit 2).
 
-use crate::Error;
+use crate::error::Error;
 use crate::scene::{Scene, Wavenumber};
 use serde_json::Value;
 use std::path::Path;
