@@ -386,3 +386,15 @@ fn clamped_rectangle_of_the_default_scene_is_example_one() {
         wrinkle::closed_form::ClampedRectangle::example_one()
     );
 }
+
+#[test]
+fn model_names_and_accepted_checks_are_validated_where_they_enter() {
+    let mut scene = Scene::default();
+    let (_, _, key, message) = scene_error(scene.apply_override("model.name=nope"));
+    assert_eq!(key, "model.name");
+    assert!(message.starts_with("unknown model `nope`"), "{message}");
+    scene.validity.accept = vec!["bogus".to_string()];
+    let (_, _, key, message) = scene_error(scene.validate());
+    assert_eq!(key, "validity.accept");
+    assert!(message.starts_with("item 0: expected one of"), "{message}");
+}

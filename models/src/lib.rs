@@ -52,3 +52,8 @@ registry! {
 pub fn names() -> Vec<&'static str> {
     catalogue().iter().map(|s| s.name).collect()
 }
+
+/// Name of the registry's reference model, [`ReferenceEnvelope`] (`"reference-envelope"`,
+/// THEORY.md §4): the default of a scene's `model.name`. Taken from the model's declaration, so
+/// it cannot drift from it.
+pub const REFERENCE_MODEL: &str = <ReferenceEnvelope as EnergyModel>::SPEC.name;

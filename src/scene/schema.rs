@@ -1,0 +1,314 @@
+//! The scene schema: every key declared once — name, Rust field, type, default, kind (with its
+//! bounds), unit and meaning — and the few checks that involve more than one key.
+//!
+//! Everything else follows from these declarations (`declare.rs` expands them): the structs and
+//! their defaults, TOML and `--set` parsing, validation, the unknown-key suggestion, [`KEYS`],
+//! the effective-scene TOML and JSON, and the key tables of `docs/scenes.md` (regenerated with
+//! `WRINKLE_BLESS=1 cargo test --test scene_docs`). **A new key is one declaration here** plus
+//! its use.
+
+use super::declare::{scene_enum, scene_schema};
+use super::keys::{Alias, KeyError, Schema, Unit};
+use super::kinds::{
+    AutoOrNumber, ChoiceList, Count, Flag, Float, FloatList, ModelName, Scalar, Table, Text,
+    number_or_auto, one_of,
+};
+use std::collections::BTreeMap;
+use toml::Value;
+use wrinkle_models::REFERENCE_MODEL;
+
+/// Source name of a scene that was not read from a file.
+pub const BUILT_IN_SOURCE: &str = "<built-in default scene>";
+
+/// Largest element count accepted along one side of the mesh.
+pub const MAX_ELEMENTS_PER_SIDE: usize = 100_000;
+
+/// Largest total element count $`n_x n_y`$: about 2.5 million unknowns for a five-field plate,
+/// whose sparse factor fills the 24 GiB of the reference machine. Larger meshes are refused
+/// before anything is allocated.
+pub const MAX_ELEMENTS: usize = 120_000;
+
+/// Largest accepted `solver.series_tolerance`: the step length
+/// $`(\varepsilon\|U_1\|/\|U_N\|)^{1/(N-1)}`$ grows without bound with $`\varepsilon`$ (1e300 gave
+/// λ = −2.3e290 with "residual 0"; 1e-3 stepped over the bifurcation onto another branch).
+/// `wrinkle bench` measured 1e-4 … 1e-9 at the same accuracy.
+pub const MAX_SERIES_TOLERANCE: f64 = 1e-4;
+
+/// The validity checks a scene may accept (`validity.accept`), as reported in `check` of each
+/// warning (docs/outputs.md); `"all"` accepts every one.
+pub const VALIDITY_CHECKS: &[&str] = &[
+    "scale_separation",
+    "ellipticity",
+    "mode_resolution",
+    "well_posedness",
+];
+
+scene_schema! {
+    /// The rectangle $`[0, L_X] \times [0, L_Y]`$ (mm).
+    [geometry] Geometry {
+        /// length $`L_X`$ along X
+        lx => length_x: f64 = 400.0, Float::above(0.0), Unit::MM;
+        /// width $`L_Y`$ along Y
+        ly => length_y: f64 = 200.0, Float::above(0.0), Unit::MM;
+    }
+
+    /// Isotropic linear elastic sheet.
+    [material] Material {
+        /// Young's modulus $`E`$
+        young => young_modulus: f64 = 70000.0, Float::above(0.0), Unit::MPA;
+        /// Poisson's ratio $`\nu`$
+        poisson => poisson_ratio: f64 = 0.3,
+            Float::above(-1.0).below(0.5).named("ν"), Unit::NONE;
+        /// thickness $`h`$
+        thickness => thickness: f64 = 0.05, Float::above(0.0), Unit::MM;
+    }
+
+    /// Which model to solve, and its free parameters.
+    [model] ModelChoice {
+        /// model to solve (`wrinkle models` lists them with their fields and parameters)
+        name => name: String = REFERENCE_MODEL.to_string(), ModelName, Unit::NONE;
+        /// wavenumber $`Q`$ of the wrinkles, or `"auto"`: the critical load is minimised over
+        /// $`Q`$ on a log scan of every wavelength from $`20h`$ to the shorter side, then refined
+        /// (a biaxial scene with waves along X starts from the minimiser of eq. (42) instead of
+        /// scanning, and scans only if no minimum lies near it). `pure-membrane` (no wavelength
+        /// selection) and `complex-envelope` (a free phase) take the reference envelope's
+        /// minimiser and say so; a plate has no wavenumber and ignores the key (with a note)
+        wavenumber => wavenumber: Wavenumber = Wavenumber::Auto,
+            number_or_auto::<Wavenumber>(Float::above(0.0)), Unit::PER_MM;
+        /// angle of the wave vector from the X axis (example 2 uses 90)
+        direction => direction_degrees: f64 = 0.0, Float::finite(), Unit::DEGREES_FROM_X;
+        /// model parameters by name, the table `[model.parameters]` (below)
+        parameters => parameters: BTreeMap<String, f64> = BTreeMap::new(),
+            Table::of(Float::finite(), "model parameters"), Unit::NONE;
+    }
+
+    /// Structured Q8 mesh of the rectangle.
+    [mesh] MeshSpec {
+        /// elements along X
+        nx => elements_x: usize = 32,
+            Count::between(1, MAX_ELEMENTS_PER_SIDE), Unit::NONE,
+            note "and nx·ny ≤ 120000 (about the largest mesh that fits in 24 GiB)";
+        /// elements along Y
+        ny => elements_y: usize = 16, Count::between(1, MAX_ELEMENTS_PER_SIDE), Unit::NONE;
+        /// ratio of the largest to the smallest element size; the smallest elements are at the
+        /// edges (clamped-edge layers are thin)
+        grading => grading: f64 = 1.0, Float::at_least(1.0), Unit::NONE;
+    }
+
+    /// Loading.
+    [load] LoadSpec {
+        /// `"biaxial"`: example 1 — tension $`N_Y`$ fixed on $`Y = 0, L_Y`$, load
+        /// $`\lambda = -N_X`$ (compression on $`X = 0, L_X`$). `"strip"`: example 2 — short
+        /// sides clamped, $`\lambda`$ = prescribed end displacement
+        kind => kind: LoadKind = LoadKind::Biaxial, one_of::<LoadKind>(), Unit::NONE;
+        /// tension $`N_Y`$ (biaxial only; ignored by the strip)
+        tension_y => tension_y: f64 = 10.0, Float::at_least(0.0), Unit::N_PER_MM;
+    }
+
+    /// Settings of the path following used by `wrinkle run`.
+    [solver] SolverSpec {
+        /// ANM truncation order $`N`$
+        order => order: usize = 20, Count::between(2, 40), Unit::NONE;
+        /// $`\varepsilon`$ in the step length $`a_{max} = (\varepsilon\|U_1\|/\|U_N\|)^{1/(N-1)}`$
+        series_tolerance => series_tolerance: f64 = 1e-7,
+            Float::above(0.0).at_most(MAX_SERIES_TOLERANCE).because(
+                "a looser series lets a step run past the validity of its truncation"
+            ),
+            Unit::NONE;
+        /// relative residual accepted at every point (Newton correction beyond it)
+        tolerance => tolerance: f64 = 1e-6, Float::above(0.0), Unit::NONE;
+        /// maximum number of steps
+        max_steps => max_steps: usize = 200, Count::at_least(1), Unit::NONE;
+        /// stop at this load $`\lambda`$ (the ANM evaluates its series there; Riks' first step
+        /// end past it is moved back onto it by arc-length corrections); `0` = no limit
+        max_load => max_load: f64 = 0.0, Float::at_least(0.0), Unit::LOAD;
+        /// stop when the maximum **physical** wrinkle amplitude over the thickness reaches
+        /// this: $`\max|w|/h`$ for a plate, $`2\max|w_\text{env}|/h`$ for envelope models; the
+        /// path's first point past it (a Riks step end, or the ANM's next dense-output point)
+        /// is moved back onto it by arc-length corrections, so that the last point lies within
+        /// $`10^{-3}`$ relative above it
+        max_amplitude_over_h => max_amplitude_over_thickness: f64 = 4.0,
+            Float::above(0.0), Unit::NONE;
+        /// size of the imperfection that selects the wrinkled branch (shape: `imperfection`),
+        /// in thicknesses of the physical amplitude it gives on the unloaded sheet. `0`: the
+        /// perfect problem, whose path stays flat on the fundamental branch past the
+        /// bifurcation (unstable there) and never wrinkles: without `max_load` the run stops at
+        /// its first point past $`\lambda_c`$ and says so (exit 3, `outcome_reason`); with
+        /// `max_load` it follows that branch to the load asked
+        perturbation => perturbation: f64 = 1e-4, Float::at_least(0.0), Unit::NONE;
+        /// `"uniform"`: the paper's uniform transverse load on the envelope,
+        /// $`f = \text{perturbation}\cdot h\,DQ^4`$ (envelope models only); `"mode"`: a load
+        /// shaped like the first buckling mode, $`F = \varepsilon K_0\varphi`$ ($`K_0`$ the
+        /// tangent of the unloaded state), scaled so that the physical amplitude it gives on
+        /// the unloaded sheet is `perturbation`·h — the same imperfection for every model;
+        /// `"auto"`: uniform for envelope models, mode for the plate
+        imperfection => imperfection: Imperfection = Imperfection::Auto,
+            one_of::<Imperfection>(), Unit::NONE;
+        /// use Padé approximants (common denominator) to lengthen ANM steps beyond the plain
+        /// series' range; a Padé-lengthened step whose end has more negative pivots than its
+        /// start (it jumped over a critical point) is redone with the series' range (a series
+        /// step, in both methods, with half its length, up to 4 times). `false`: the classical
+        /// ANM. The default is the fastest method measured on every registered model
+        /// (`docs/benchmarks.md`)
+        pade => pade: bool = true, Flag, Unit::NONE;
+        /// `"anm"` (Asymptotic Numerical Method) or `"riks"` (Newton–Riks arc-length baseline:
+        /// spherical constraint, a dimensionless arc length in units of the linear response to
+        /// $`\lambda_c`$ and of $`\lambda_c`$, at most 0.3 and adapted to the Newton iterations;
+        /// a step whose end has a negative pivot after a stable start, with the load still
+        /// rising, jumped over the bifurcation and is halved, up to 12 times; a step changes
+        /// the deflection (envelope) fields by at most $`h/4`$, so that the knee is resolved
+        /// where the in-plane displacements dominate the arc length; `order`,
+        /// `series_tolerance` and `pade` unused)
+        method => method: PathMethod = PathMethod::Anm, one_of::<PathMethod>(), Unit::NONE;
+    }
+
+    /// What `wrinkle run` writes.
+    [output] OutputSpec {
+        /// output directory (`--out DIR` overrides it)
+        directory => directory: String = "out".to_string(), Text, Unit::NONE;
+        /// loads $`\lambda`$ at which the fields are written as VTU
+        vtu_loads => vtu_loads: Vec<f64> = Vec::new(),
+            FloatList::of(Float::finite()), Unit::LOAD;
+        /// draw plots (PNG and SVG, embedded in `report.html`)
+        plots => plots: bool = true, Flag, Unit::NONE;
+        /// write the nodal fields (`fields_final.vtu`, `fields_load_L.vtu`) with the stress
+        /// resultants
+        vtu => vtu: bool = true, Flag, Unit::NONE;
+        /// write the reconstructed physical surface on a fine grid (`surface_final.vtu`; the
+        /// largest output of envelope models)
+        surface => surface: bool = true, Flag, Unit::NONE;
+    }
+
+    /// Which validity checks a scene accepts, table `[validity]`.
+    [validity] ValiditySpec {
+        /// checks whose failure is still reported (as a note) but does not make the exit code 4
+        accept => accept: Vec<String> = Vec::new(),
+            ChoiceList::new(VALIDITY_CHECKS, "all", "check names"), Unit::NONE;
+    }
+}
+
+/// Older spellings of keys, still read.
+static ALIASES: &[Alias] = &[Alias {
+    key: "solver.max_envelope_over_h",
+    target: "solver.max_amplitude_over_h",
+    meaning: "the older key: sets `max_amplitude_over_h` to twice its value (the physical \
+              amplitude of an envelope model is $`2|w_\\text{env}|`$)",
+    convert: |value| {
+        Float::finite()
+            .read(value)
+            .map(|half| Value::Float(2.0 * half))
+    },
+}];
+
+/// The scene schema: the tables, the keys of [`KEYS`] and the aliases.
+pub(super) static SCHEMA: Schema<Scene> = Schema {
+    sections: SECTIONS,
+    keys: KEY_SPECS,
+    aliases: ALIASES,
+};
+
+/// The checks that involve more than one key (each declaration checks its own key).
+pub(super) fn check_across_keys(scene: &Scene) -> Result<(), KeyError> {
+    let (elements_x, elements_y) = (scene.mesh.elements_x, scene.mesh.elements_y);
+    let elements = elements_x.saturating_mul(elements_y);
+    if elements > MAX_ELEMENTS {
+        return Err(KeyError::new(
+            "mesh.nx",
+            format!(
+                "mesh.nx × mesh.ny = {elements_x} × {elements_y} = {elements} elements is more than the {MAX_ELEMENTS} this tool solves in 24 GiB"
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Wavenumber $`Q`$ of the wrinkles.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Wavenumber {
+    /// Chosen by the solver (critical wavenumber of the closed form or a scan).
+    Auto,
+    /// Prescribed $`Q`$ (1/mm).
+    Fixed(f64),
+}
+
+impl AutoOrNumber for Wavenumber {
+    const AUTO: Self = Wavenumber::Auto;
+
+    fn fixed(number: f64) -> Self {
+        Wavenumber::Fixed(number)
+    }
+
+    fn number(self) -> Option<f64> {
+        match self {
+            Wavenumber::Auto => None,
+            Wavenumber::Fixed(number) => Some(number),
+        }
+    }
+}
+
+scene_enum! {
+    /// Kind of loading.
+    pub enum LoadKind {
+        /// Example 1: tension $`N_Y`$ fixed, load $`\lambda = -N_X`$ (compression, N/mm).
+        Biaxial = "biaxial",
+        /// Example 2: short sides clamped, $`\lambda`$ = prescribed end displacement (mm).
+        Strip = "strip",
+    }
+}
+
+scene_enum! {
+    /// Path-following method.
+    pub enum PathMethod {
+        /// Asymptotic Numerical Method (THEORY.md §10).
+        Anm = "anm",
+        /// Riks arc-length continuation (baseline).
+        Riks = "riks",
+    }
+}
+
+scene_enum! {
+    /// Shape of the imperfection that selects the wrinkled branch (`solver.imperfection`).
+    pub enum Imperfection {
+        /// Uniform for envelope models (the paper's runs), mode-shaped for the others.
+        Auto = "auto",
+        /// A uniform transverse load on the envelope, $`f = \text{perturbation}\cdot h\,DQ^4`$
+        /// (envelope models only; the shape of every run before mode-shaped imperfections
+        /// existed).
+        Uniform = "uniform",
+        /// A load shaped like the first buckling mode, $`F = \varepsilon K_0\varphi`$.
+        Mode = "mode",
+    }
+}
+
+impl ValiditySpec {
+    /// Whether a failed `check` is accepted by the scene.
+    pub fn accepts(&self, check: &str) -> bool {
+        self.accept
+            .iter()
+            .any(|name| name == "all" || name == check)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_alias_sets_a_declared_key() {
+        for alias in ALIASES {
+            assert!(SCHEMA.spec(alias.target).is_some(), "{}", alias.key);
+        }
+    }
+
+    #[test]
+    fn the_mesh_note_states_the_element_limit() {
+        let note = SCHEMA.spec("mesh.nx").unwrap().note;
+        assert!(note.contains(&MAX_ELEMENTS.to_string()), "{note}");
+    }
+
+    #[test]
+    fn keys_are_the_declarations_in_order() {
+        let declared: Vec<&str> = KEY_SPECS.iter().map(|spec| spec.key).collect();
+        assert_eq!(declared, KEYS);
+    }
+}
