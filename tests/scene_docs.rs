@@ -55,6 +55,11 @@ fn every_table_lists_every_key_with_its_default() {
             );
         }
     }
+    let model = key_table("model");
+    assert!(
+        model.contains("| `wavenumber_model` |") && model.contains("`\"reference-envelope\"`"),
+        "{model}"
+    );
     let solver = key_table("solver");
     assert!(solver.contains("| `max_envelope_over_h` |"), "{solver}");
     assert!(solver.contains(r"(\varepsilon\|U_1\|/\|U_N\|)"), "{solver}");

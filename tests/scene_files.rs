@@ -387,6 +387,43 @@ fn clamped_rectangle_of_the_default_scene_is_example_one() {
     );
 }
 
+/// `model.wavenumber_model`, declared once in the schema: its default is the registry's reference
+/// model (as `model.name`'s), it must name a registered model, and it is printed and echoed.
+#[test]
+fn wavenumber_model_defaults_to_the_reference_model_and_must_be_registered() {
+    let scene = Scene::default();
+    assert_eq!(
+        scene.model.wavenumber_model,
+        wrinkle_models::REFERENCE_MODEL
+    );
+    assert_eq!(scene.model.name, wrinkle_models::REFERENCE_MODEL);
+    let mut scene = Scene::default();
+    let (line, source, key, message) =
+        scene_error(scene.apply_override("model.wavenumber_model=nope"));
+    assert_eq!(source, "--set model.wavenumber_model=nope");
+    assert_eq!(key, "model.wavenumber_model", "{line}");
+    assert!(
+        message.starts_with("unknown model `nope` (models: "),
+        "{line}"
+    );
+    let (_, _, key, message) = scene_error(Scene::from_toml_str(
+        "[model]\nwavenumber_model = 3\n",
+        "typed.toml",
+    ));
+    assert_eq!(key, "model.wavenumber_model");
+    assert_eq!(message, "expected a string, got integer 3");
+    scene
+        .apply_override("model.wavenumber_model=fvk-plate")
+        .unwrap();
+    let text = scene.to_toml_string();
+    assert!(
+        text.contains("\nwavenumber = \"auto\"\nwavenumber_model = \"fvk-plate\"\n"),
+        "{text}"
+    );
+    assert_eq!(scene.echo_json()["model"]["wavenumber_model"], "fvk-plate");
+    assert_eq!(Scene::from_toml_str(&text, &scene.source).unwrap(), scene);
+}
+
 #[test]
 fn model_names_and_accepted_checks_are_validated_where_they_enter() {
     let mut scene = Scene::default();

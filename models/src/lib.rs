@@ -54,6 +54,7 @@ pub fn names() -> Vec<&'static str> {
 }
 
 /// Name of the registry's reference model, [`ReferenceEnvelope`] (`"reference-envelope"`,
-/// THEORY.md §4): the default of a scene's `model.name`. Taken from the model's declaration, so
-/// it cannot drift from it.
+/// THEORY.md §4): the default of a scene's `model.name`, and of `model.wavenumber_model`, the
+/// model whose minimisation of $`\lambda_c(Q)`$ gives the wavenumber $`Q`$ to models that do not
+/// select their own. Taken from the model's declaration, so it cannot drift from it.
 pub const REFERENCE_MODEL: &str = <ReferenceEnvelope as EnergyModel>::SPEC.name;

@@ -75,6 +75,13 @@ scene_schema! {
         /// minimiser and say so; a plate has no wavenumber and ignores the key (with a note)
         wavenumber => wavenumber: Wavenumber = Wavenumber::Auto,
             number_or_auto::<Wavenumber>(Float::above(0.0)), Unit::PER_MM;
+        /// the model whose minimisation of $`\lambda_c(Q)`$ gives the wavenumber $`Q`$ to models
+        /// that do not select their own (a complex envelope, the pure membrane) or whose
+        /// $`\lambda_c(Q)`$ has no minimum in the search range; also gives the shift guess of
+        /// the plate's buckling analysis. Declared ahead of its use: the threshold search does
+        /// not read it yet and takes `reference-envelope` in these roles
+        wavenumber_model => wavenumber_model: String = REFERENCE_MODEL.to_string(),
+            ModelName, Unit::NONE;
         /// angle of the wave vector from the X axis (example 2 uses 90)
         direction => direction_degrees: f64 = 0.0, Float::finite(), Unit::DEGREES_FROM_X;
         /// model parameters by name, the table `[model.parameters]` (below)
