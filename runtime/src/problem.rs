@@ -5,6 +5,8 @@ use crate::fem::{
     Assembler, BodyLoad, DirichletCondition, DofMap, EdgeTraction, LoadVectors, Mesh, TaylorTape,
 };
 use crate::linear::pattern::SparseMatrix;
+/// Euclidean norm (re-exported from [`crate::linear::vector`], where the vector kernels live).
+pub use crate::linear::vector::norm;
 use crate::model::EnergyModel;
 use crate::scalar::Scalar;
 use num_dual::Dual64;
@@ -250,9 +252,4 @@ pub fn max_or_nan(values: impl IntoIterator<Item = f64>) -> f64 {
             largest.max(value)
         }
     })
-}
-
-/// Euclidean norm.
-pub fn norm(v: &[f64]) -> f64 {
-    v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }

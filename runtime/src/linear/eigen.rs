@@ -24,6 +24,7 @@ use nalgebra::{DMatrix, SymmetricEigen};
 
 use super::factor::{FactorizationKind, LinearError, SparseFactorization};
 use super::pattern::SparseMatrix;
+use super::vector::{axpy, dot, norm};
 
 /// Settings of [`smallest_positive_buckling`].
 #[derive(Clone, Debug, PartialEq)]
@@ -121,21 +122,6 @@ impl SplitMix64 {
 
     fn vector(&mut self, n: usize) -> Vec<f64> {
         (0..n).map(|_| self.next_unit()).collect()
-    }
-}
-
-fn dot(x: &[f64], y: &[f64]) -> f64 {
-    x.iter().zip(y).map(|(a, b)| a * b).sum()
-}
-
-fn norm(x: &[f64]) -> f64 {
-    dot(x, x).sqrt()
-}
-
-/// $`y \mathrel{+}= \alpha x`$.
-fn axpy(alpha: f64, x: &[f64], y: &mut [f64]) {
-    for (target, source) in y.iter_mut().zip(x) {
-        *target += alpha * source;
     }
 }
 

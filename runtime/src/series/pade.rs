@@ -5,6 +5,7 @@ use nalgebra::{DMatrix, Schur};
 
 use super::vector_series::step_length_from_norms;
 use super::{PathSeries, SeriesError};
+use crate::linear::vector::{dot, norm};
 
 /// Default fraction of the first positive pole that [`PadeApproximant::pade_step_length`]
 /// never exceeds.
@@ -394,14 +395,6 @@ struct Projections {
 /// $`a, a^2, a^3, \dots`$, each power the previous one times $`a`$.
 fn powers(parameter: f64) -> impl Iterator<Item = f64> {
     std::iter::successors(Some(parameter), move |power| Some(power * parameter))
-}
-
-fn dot(left: &[f64], right: &[f64]) -> f64 {
-    left.iter().zip(right).map(|(x, y)| x * y).sum()
-}
-
-fn norm(vector: &[f64]) -> f64 {
-    dot(vector, vector).sqrt()
 }
 
 /// Modified Gram–Schmidt with one re-orthogonalisation pass ("twice is enough").

@@ -3,6 +3,7 @@
 //! geometric-series (bifurcation) indicator.
 
 use super::SeriesError;
+use crate::linear::vector::dot;
 
 /// Minimal cosine between $`(U_{N-1}, \lambda_{N-1})`$ and $`(U_N, \lambda_N)`$ for
 /// [`geometric_ratio`] to report a geometric series.
@@ -98,9 +99,10 @@ impl PathSeries {
     /// truncation order).
     #[must_use]
     pub fn coefficient_norm(&self, order: usize) -> f64 {
-        let displacement = self.displacement.get(order).map_or(0.0, |vector| {
-            vector.iter().map(|value| value * value).sum::<f64>()
-        });
+        let displacement = self
+            .displacement
+            .get(order)
+            .map_or(0.0, |vector| dot(vector, vector));
         let load = self.load.get(order).copied().unwrap_or(0.0);
         (displacement + load * load).sqrt()
     }
@@ -109,7 +111,7 @@ impl PathSeries {
     #[must_use]
     pub fn coefficient_dot(&self, first: usize, second: usize) -> f64 {
         let displacement = match (self.displacement.get(first), self.displacement.get(second)) {
-            (Some(left), Some(right)) => left.iter().zip(right).map(|(x, y)| x * y).sum(),
+            (Some(left), Some(right)) => dot(left, right),
             _ => 0.0,
         };
         let load = self.load.get(first).copied().unwrap_or(0.0)

@@ -48,6 +48,7 @@ use crate::fem::TaylorTape;
 use crate::linear::eigen::{BucklingOptions, smallest_positive_buckling};
 use crate::linear::factor::SparseFactorization;
 use crate::linear::pattern::SparseMatrix;
+use crate::linear::vector::{axpy, dot};
 use crate::model::EnergyModel;
 use crate::problem::Problem;
 use crate::series::{
@@ -172,11 +173,10 @@ fn first_order<M: EnergyModel>(
             "ANM order 1 at load {:.6e}",
             state.load
         )))?;
-    let norm2: f64 = u_hat.iter().map(|v| v * v).sum();
+    let norm2 = dot(&u_hat, &u_hat);
     let mut lambda1 = 1.0 / (1.0 + norm2).sqrt();
     if let Some((u_prev, l_prev)) = previous_direction {
-        let dot: f64 = u_hat.iter().zip(u_prev).map(|(a, b)| a * b).sum::<f64>() + l_prev;
-        if dot < 0.0 {
+        if dot(&u_hat, u_prev) + l_prev < 0.0 {
             lambda1 = -lambda1;
         }
     }
@@ -205,11 +205,8 @@ fn higher_order(
         .map_err(SolveError::linear(format!(
             "ANM order {k} at load {load:.6e}"
         )))?;
-    let dot: f64 = rhs.iter().zip(u1).map(|(a, b)| a * b).sum();
-    let lambda_k = -lambda1 * dot;
-    for (r, h) in rhs.iter_mut().zip(u_hat) {
-        *r += lambda_k * h;
-    }
+    let lambda_k = -lambda1 * dot(&rhs, u1);
+    axpy(lambda_k, u_hat, &mut rhs);
     Ok((rhs, lambda_k))
 }
 

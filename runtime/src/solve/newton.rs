@@ -3,8 +3,9 @@
 use super::error::SolveError;
 use crate::linear::factor::SparseFactorization;
 use crate::linear::pattern::SparseMatrix;
+use crate::linear::vector::norm;
 use crate::model::EnergyModel;
-use crate::problem::{Problem, norm};
+use crate::problem::Problem;
 
 /// Settings of [`newton`].
 #[derive(Clone, Copy, Debug)]

@@ -52,6 +52,7 @@ use super::path::{PathControl, PathEvent, PathResult, PathState, PathStatistics,
 use crate::linear::LinearError;
 use crate::linear::factor::SparseFactorization;
 use crate::linear::pattern::SparseMatrix;
+use crate::linear::vector::dot;
 use crate::model::EnergyModel;
 use crate::problem::Problem;
 
@@ -264,10 +265,6 @@ impl StepFailure {
 /// Arc-length norm squared $`\|a\|^2 + \psi^2 b^2`$ style inner product.
 fn arc_dot(u: &[f64], load_u: f64, v: &[f64], load_v: f64, load_scale: f64) -> f64 {
     dot(u, v) + load_scale * load_scale * load_u * load_v
-}
-
-fn dot(u: &[f64], v: &[f64]) -> f64 {
-    u.iter().zip(v).map(|(a, b)| a * b).sum()
 }
 
 /// Tangent assembly + factorisation + solves, with the work counters.
