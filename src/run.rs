@@ -26,13 +26,14 @@ use wrinkle_runtime::EnergyModel;
 use wrinkle_runtime::fem::{BodyLoad, LoadVectors, Mesh};
 use wrinkle_runtime::linear::factor::SparseFactorization;
 use wrinkle_runtime::problem::Problem;
-use wrinkle_runtime::solve::anm::{AnmOptions, AnmStep, follow_path_anm};
+use wrinkle_runtime::solve::anm::AnmOptions;
 use wrinkle_runtime::solve::ellipticity::legendre_hadamard;
+use wrinkle_runtime::solve::follow::{
+    FollowMethod, FollowOptions, FollowedPath, PathObserver, follow_path,
+};
 use wrinkle_runtime::solve::newton::{NewtonOptions, newton};
 use wrinkle_runtime::solve::path::{PathControl, PathEvent, PathResult, PathState, PathStop};
-use wrinkle_runtime::solve::riks::{
-    AmplitudeControl, RiksOptions, correct_on_arc, follow_path_riks,
-};
+use wrinkle_runtime::solve::riks::{AmplitudeControl, RiksOptions};
 
 /// Path following of a scene, writing its outputs into `output_directory`. Progress goes to
 /// standard error unless `quiet`.
@@ -205,8 +206,6 @@ struct PathRecorder<'a, M: EnergyModel> {
     target: f64,
     vtu_requests: Vec<f64>,
     previous: Option<PathState>,
-    /// The state recorded before `previous` (the start of a Riks path's last step).
-    penultimate: Option<PathState>,
     progress: Progress,
     trace: Trace,
 }
@@ -280,7 +279,7 @@ impl<M: EnergyModel> PathRecorder<'_, M> {
             max_amplitude / h,
             &format!("step {}, λ = {:.6e}", event.step, state.load),
         );
-        self.penultimate = self.previous.replace(state.clone());
+        self.previous = Some(state.clone());
         self.trace.last = Snap {
             load: state.load,
             values,
@@ -414,7 +413,6 @@ impl<'a, M: EnergyModel> PathRecorder<'a, M> {
             target,
             vtu_requests,
             previous: None,
-            penultimate: None,
             progress,
             trace: Trace {
                 points: Vec::new(),
@@ -452,36 +450,9 @@ fn trace_path<M: EnergyModel>(
     let start = start_point(problem, factor, threshold)?;
     let mut recorder = PathRecorder::new(scene, problem, layout, threshold, &start, quiet);
     let max_load = (scene.solver.max_load > 0.0).then_some(scene.solver.max_load);
-    let mut anm_steps = Vec::new();
-    // Riks' settings: its path, and the arc-length corrections of the landing (either method).
-    let riks = riks_options(scene, problem, layout, max_load, threshold.critical_load());
-    let mut result = {
-        let mut observer = |event: &PathEvent| recorder.observe(event);
-        follow(
-            scene,
-            problem,
-            &riks,
-            factor,
-            start,
-            max_load,
-            threshold.critical_load(),
-            threshold.buckling.modes.first().cloned(),
-            &mut observer,
-            &mut anm_steps,
-        )
-    };
-    // The ANM stops at `max_load` exactly (its series is evaluated there); Riks at its first
-    // step end past it.
-    let landing = match (&result.stop, scene.solver.method, max_load) {
-        (PathStop::Observer, _, _) => Some(Landing::Amplitude),
-        (PathStop::MaxLoad, PathMethod::Riks, Some(load)) => Some(Landing::Load(load)),
-        _ => None,
-    };
-    if let Some(landing) = landing
-        && !recorder.trace.interrupted
-    {
-        land_on_target(problem, factor, &mut recorder, &mut result, &riks, landing);
-    }
+    let options = follow_options(scene, problem, layout, threshold, max_load);
+    let FollowedPath { result, anm_steps } =
+        follow_path(problem, start, factor, &options, &mut recorder);
     let stop = if recorder.trace.interrupted {
         "interrupted by the user".to_string()
     } else if recorder.trace.passed_perfect_bifurcation.is_some() {
@@ -526,42 +497,43 @@ fn stress_resultants<M: EnergyModel>(
     )
 }
 
-/// The path solver chosen by `solver.method`.
-#[allow(clippy::too_many_arguments)]
-fn follow<M: EnergyModel>(
+/// The path settings of `wrinkle run`: the method of `solver.method` with its settings, and the
+/// landing on `solver.max_amplitude_over_h` (in $`\max|w|/h`$, [`PathObserver::amplitude`])
+/// with the arc-length corrector of the Riks settings, whichever the method.
+fn follow_options<M: EnergyModel>(
     scene: &Scene,
     problem: &Problem<M>,
-    riks: &RiksOptions,
-    factor: &mut SparseFactorization,
-    start: PathState,
+    layout: &Layout,
+    threshold: &Threshold,
     max_load: Option<f64>,
-    critical_load: f64,
-    buckling_mode: Option<Vec<f64>>,
-    observer: &mut dyn FnMut(&PathEvent) -> PathControl,
-    anm_steps: &mut Vec<AnmStep>,
-) -> PathResult {
-    match scene.solver.method {
-        PathMethod::Anm => {
-            let options = AnmOptions {
-                order: scene.solver.order,
-                series_tolerance: scene.solver.series_tolerance,
-                residual_tolerance: scene.solver.tolerance,
-                max_steps: scene.solver.max_steps,
-                max_load,
-                pade: scene.solver.pade,
-                corrector: NewtonOptions {
-                    tolerance: scene.solver.tolerance * 1e-3,
-                    max_iterations: 12,
-                },
-                // The threshold's mode starts the eigen-solver of the bifurcation prediction.
-                bifurcation_mode_guess: buckling_mode,
-                // ... and its load is the guess the prediction is shifted towards.
-                bifurcation_load_guess: Some(critical_load).filter(|l| l.is_finite()),
-                ..AnmOptions::default()
-            };
-            follow_path_anm(problem, start, factor, &options, observer, anm_steps)
-        }
-        PathMethod::Riks => follow_path_riks(problem, start, factor, riks, observer),
+) -> FollowOptions {
+    let critical_load = threshold.critical_load();
+    let riks = riks_options(scene, problem, layout, max_load, critical_load);
+    let landing_corrector = riks.corrector();
+    let method = match scene.solver.method {
+        PathMethod::Anm => FollowMethod::Anm(AnmOptions {
+            order: scene.solver.order,
+            series_tolerance: scene.solver.series_tolerance,
+            residual_tolerance: scene.solver.tolerance,
+            max_steps: scene.solver.max_steps,
+            max_load,
+            pade: scene.solver.pade,
+            corrector: NewtonOptions {
+                tolerance: scene.solver.tolerance * 1e-3,
+                max_iterations: 12,
+            },
+            // The threshold's mode starts the eigen-solver of the bifurcation prediction.
+            bifurcation_mode_guess: threshold.buckling.modes.first().cloned(),
+            // ... and its load is the guess the prediction is shifted towards.
+            bifurcation_load_guess: Some(critical_load).filter(|l| l.is_finite()),
+            ..AnmOptions::default()
+        }),
+        PathMethod::Riks => FollowMethod::Riks(riks),
+    };
+    FollowOptions {
+        method,
+        amplitude_target: Some(scene.solver.max_amplitude_over_thickness),
+        landing_corrector,
     }
 }
 
@@ -602,152 +574,51 @@ fn riks_options<M: EnergyModel>(
     }
 }
 
-/// Relative distance above the amplitude target within which a path's last point is taken as
-/// landed on it.
-const LANDING_TOLERANCE: f64 = 1e-3;
-
-/// The same for `solver.max_load`, which the ANM meets exactly.
-const LOAD_LANDING_TOLERANCE: f64 = 1e-9;
-
-/// What a path's last point is moved back onto ([`land_on_target`]).
-#[derive(Clone, Copy, Debug)]
-enum Landing {
-    /// The amplitude target `solver.max_amplitude_over_h` (in $`\max|w|/h`$).
-    Amplitude,
-    /// `solver.max_load` (Riks: its last step end passed it).
-    Load(f64),
-}
-
-/// Arc-length corrections tried to land a path's last point on its target.
-const MAX_LANDING_CORRECTIONS: usize = 8;
-
-/// Moves a path's last point, which overshot the amplitude target, back onto it. The path
-/// stops at its first recorded point past the target: Riks' step end (up to half a thickness
-/// past it), or the ANM's next dense-output point (2.6 % past it on the default scene). The
-/// landing takes equilibrium points on spheres about the last point below the target
-/// ([`correct_on_arc`]) through the chord between the bracketing points, the bracket narrowed
-/// by regula falsi (Illinois), until the point's $`\max|w|/h`$ lies within
-/// [`LANDING_TOLERANCE`] above the target. The landed point replaces the overshooting one in
-/// the recorded path; if no correction lands, the path is left as it was. A Riks path stopped
-/// by `solver.max_load` lands on that load the same way ([`Landing::Load`]).
-fn land_on_target<M: EnergyModel>(
-    problem: &Problem<M>,
-    factor: &mut SparseFactorization,
-    recorder: &mut PathRecorder<'_, M>,
-    result: &mut PathResult,
-    options: &RiksOptions,
-    landing: Landing,
-) {
-    let clock = Instant::now();
-    let (target, tolerance) = match landing {
-        Landing::Amplitude => (recorder.target, LANDING_TOLERANCE),
-        Landing::Load(load) => (load, LOAD_LANDING_TOLERANCE),
-    };
-    let h = recorder.scene.material.thickness;
-    let (Some(start), Some(end), Some(last_point)) = (
-        recorder.penultimate.clone(),
-        recorder.previous.clone(),
-        recorder.trace.points.last().cloned(),
-    ) else {
-        return;
-    };
-    let measure = |recorder: &PathRecorder<'_, M>, state: &PathState| match landing {
-        Landing::Amplitude => {
-            let values = problem.dofs().expand(&state.displacement, state.load);
-            recorder.snapshot(&values).max_amplitude() / h
-        }
-        Landing::Load(_) => state.load,
-    };
-    let overshoot = measure(recorder, &end);
-    let below = measure(recorder, &start);
-    let window = tolerance * target.abs();
-    if !(overshoot > target + window && below < target) {
-        return;
+/// `wrinkle run`'s side of the path: the recorder sees every point, measures the amplitude of
+/// the landing, and forgets an overshooting last point for the landed one.
+impl<M: EnergyModel> PathObserver for PathRecorder<'_, M> {
+    fn observe(&mut self, event: &PathEvent) -> PathControl {
+        PathRecorder::observe(self, event)
     }
-    // Aim at the middle of the accepted window [target, target + window].
-    let aim = target + 0.5 * window;
-    let mut low = (below - aim, start.clone());
-    let mut high = (overshoot - aim, end);
-    let mut landed = None;
-    let mut side = 0;
-    for _ in 0..MAX_LANDING_CORRECTIONS {
-        let fraction = low.0 / (low.0 - high.0);
-        let predicted = PathState {
-            displacement: low
-                .1
-                .displacement
-                .iter()
-                .zip(&high.1.displacement)
-                .map(|(a, b)| a + fraction * (b - a))
-                .collect(),
-            load: low.1.load + fraction * (high.1.load - low.1.load),
-        };
-        let Ok(corrected) = correct_on_arc(
-            problem,
-            factor,
-            &start,
-            &predicted,
-            options,
-            &mut result.statistics,
-        ) else {
-            break;
-        };
-        let value = measure(recorder, &corrected.state) - aim;
-        if value.abs() <= 0.5 * window {
-            landed = Some(corrected);
-            break;
-        }
-        // Illinois: halve the stale end's value when the same end is kept twice.
-        if value > 0.0 {
-            high = (value, corrected.state);
-            if side == 1 {
-                low.0 *= 0.5;
-            }
-            side = 1;
-        } else {
-            low = (value, corrected.state);
-            if side == -1 {
-                high.0 *= 0.5;
-            }
-            side = -1;
-        }
+
+    /// $`\max|w|/h`$ of the physical deflection.
+    fn amplitude(&self, state: &PathState) -> f64 {
+        let values = self.problem.dofs().expand(&state.displacement, state.load);
+        self.snapshot(&values).max_amplitude() / self.scene.material.thickness
     }
-    result.statistics.total_seconds += clock.elapsed().as_secs_f64();
-    let Some(landed) = landed else {
-        return;
-    };
-    // Forget what the overshooting point recorded (its point, the profiles it captured, the
-    // requested states it interpolated, which go back to the requests), then record the
-    // landed point instead: it takes back the requests up to its load.
-    let trace = &mut recorder.trace;
-    trace.points.pop();
-    trace
-        .profiles
-        .retain(|profile| profile.load != last_point.lambda);
-    let beyond = |snap: &Snap| snap.load > start.load;
-    let returned: Vec<f64> = trace
-        .requested
-        .iter()
-        .filter(|snap| beyond(snap))
-        .map(|snap| snap.load)
-        .collect();
-    trace.requested.retain(|snap| !beyond(snap));
-    recorder.vtu_requests.splice(0..0, returned);
-    recorder.previous = Some(start);
-    let event = PathEvent {
-        step: last_point.step,
-        interior: false,
-        state: &landed.state,
-        relative_residual: landed.relative_residual,
-        predicted_bifurcation: None,
-    };
-    recorder.observe(&event);
-    result.last = landed.state;
+
+    /// An interrupted path is left where it stopped.
+    fn wants_landing(&self) -> bool {
+        !self.trace.interrupted
+    }
+
+    /// Forgets what the overshooting point recorded (its point, the profiles it captured, the
+    /// requested states it interpolated, which go back to the requests), then records the
+    /// landed point instead: it takes back the requests up to its load.
+    fn replace_last(&mut self, kept: &PathState, landed: &PathEvent) {
+        let trace = &mut self.trace;
+        let overshooting_load = trace.points.pop().map(|point| point.lambda);
+        trace
+            .profiles
+            .retain(|profile| Some(profile.load) != overshooting_load);
+        let beyond = |snap: &Snap| snap.load > kept.load;
+        let returned: Vec<f64> = trace
+            .requested
+            .iter()
+            .filter(|snap| beyond(snap))
+            .map(|snap| snap.load)
+            .collect();
+        trace.requested.retain(|snap| !beyond(snap));
+        self.vtu_requests.splice(0..0, returned);
+        self.previous = Some(kept.clone());
+        PathRecorder::observe(self, landed);
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use wrinkle_runtime::solve::anm::follow_path_anm;
 
     /// The first predicted bifurcation load and the factorisations of a short ANM path for
     /// each guess of `AnmOptions::bifurcation_load_guess`.

@@ -39,10 +39,12 @@
 //! it. An eigen-solver failure never stops the path and is never swallowed: it is kept in
 //! [`PathResult::warnings`].
 
+use super::arc_length::{ArcCorrectorOptions, ArcLengthConstraint, correct_on_arc};
 use super::error::SolveError;
+use super::landing::parameter_at_load;
+use super::linearization::{Linearization, SpareTangent, factorize_tangent, load_tangent};
 use super::newton::NewtonOptions;
-use super::path::{PathControl, PathEvent, PathResult, PathState, PathStatistics, PathStop};
-use super::riks::{ArcLengthConstraint, RiksOptions, correct_on_arc};
+use super::path::{PathControl, PathEvent, PathResult, PathState, PathStop};
 use super::wavenumber::LOCAL_SHIFT;
 use crate::fem::TaylorTape;
 use crate::linear::eigen::{BucklingOptions, smallest_positive_buckling};
@@ -162,23 +164,15 @@ fn first_order<M: EnergyModel>(
     factor: &SparseFactorization,
     previous_direction: Option<(&[f64], f64)>,
 ) -> Result<(Vec<f64>, f64), SolveError> {
-    let mut u_hat: Vec<f64> = problem
-        .load_derivative(&state.displacement, state.load)
-        .iter()
-        .map(|v| -v)
-        .collect();
-    factor
-        .solve_in_place(&mut u_hat)
-        .map_err(SolveError::linear(format!(
-            "ANM order 1 at load {:.6e}",
-            state.load
-        )))?;
+    let u_hat = load_tangent(problem, factor, &state.displacement, state.load).map_err(
+        SolveError::linear(format!("ANM order 1 at load {:.6e}", state.load)),
+    )?;
     let norm2 = dot(&u_hat, &u_hat);
     let mut lambda1 = 1.0 / (1.0 + norm2).sqrt();
-    if let Some((u_prev, l_prev)) = previous_direction {
-        if dot(&u_hat, u_prev) + l_prev < 0.0 {
-            lambda1 = -lambda1;
-        }
+    if let Some((u_prev, l_prev)) = previous_direction
+        && dot(&u_hat, u_prev) + l_prev < 0.0
+    {
+        lambda1 = -lambda1;
     }
     Ok((u_hat, lambda1))
 }
@@ -367,12 +361,9 @@ pub fn follow_path_anm<M: EnergyModel>(
     steps_log: &mut Vec<AnmStep>,
 ) -> PathResult {
     let mut run = AnmRun {
-        problem,
-        factor,
+        linearization: Linearization::new(problem, factor),
         options,
         begin: Instant::now(),
-        statistics: PathStatistics::default(),
-        matrix: problem.new_matrix(),
         tape: problem
             .assembler
             .taylor_tape(options.order.clamp(2, MAX_SERIES_LEN - 2)),
@@ -386,10 +377,10 @@ pub fn follow_path_anm<M: EnergyModel>(
         end_check: None,
         start_factorized: false,
     };
-    run.statistics.tape_bytes = Some(run.tape.bytes());
+    run.linearization.statistics.tape_bytes = Some(run.tape.bytes());
     let start_residual = run
-        .statistics
-        .time_residual(|| problem.relative_residual(&run.state.displacement, run.state.load));
+        .linearization
+        .relative_residual(&run.state.displacement, run.state.load);
     let event = PathEvent {
         step: 0,
         interior: false,
@@ -412,12 +403,10 @@ pub fn follow_path_anm<M: EnergyModel>(
 
 /// The state of one ANM path.
 struct AnmRun<'a, M: EnergyModel> {
-    problem: &'a Problem<M>,
-    factor: &'a mut SparseFactorization,
+    /// The tangent at the step's start, its factorisation and the path's work counters.
+    linearization: Linearization<'a, M>,
     options: &'a AnmOptions,
     begin: Instant,
-    statistics: PathStatistics,
-    matrix: SparseMatrix,
     tape: TaylorTape,
     state: PathState,
     /// Path tangent $`(dU/da, d\lambda/da)`$ at the end of the previous step.
@@ -432,7 +421,7 @@ struct AnmRun<'a, M: EnergyModel> {
     warnings: Vec<String>,
     /// A second tangent and factorisation for the end of a step,
     /// where its inertia is checked (see [`AnmRun::jumped_over_critical_point`]).
-    end_check: Option<(SparseMatrix, SparseFactorization)>,
+    end_check: Option<SpareTangent>,
     /// The tangent at the current start is already assembled and factorised (by the end check
     /// of the previous step).
     start_factorized: bool,
@@ -448,23 +437,18 @@ struct AcceptedEnd {
 }
 
 impl<M: EnergyModel> AnmRun<'_, M> {
-    fn finish(mut self, stop: PathStop) -> PathResult {
-        self.statistics.total_seconds = self.begin.elapsed().as_secs_f64();
-        self.statistics.factor_nonzeros = Some(self.factor.factor_nnz());
+    fn finish(self, stop: PathStop) -> PathResult {
+        let factor_nonzeros = self.linearization.factor().factor_nnz();
+        let mut statistics = self.linearization.statistics;
+        statistics.total_seconds = self.begin.elapsed().as_secs_f64();
+        statistics.factor_nonzeros = Some(factor_nonzeros);
         PathResult {
             last: self.state,
-            statistics: self.statistics,
+            statistics,
             stop,
             bifurcation: self.bifurcation,
             warnings: self.warnings,
         }
-    }
-
-    /// The field-balanced relative residual at a point, counted and timed.
-    fn relative_residual(&mut self, displacement: &[f64], load: f64) -> f64 {
-        let problem = self.problem;
-        self.statistics
-            .time_residual(|| problem.relative_residual(displacement, load))
     }
 
     /// One step: factorise, series, bifurcation bookkeeping, step length, end point, dense
@@ -476,53 +460,11 @@ impl<M: EnergyModel> AnmRun<'_, M> {
         steps_log: &mut Vec<AnmStep>,
     ) -> Result<Option<PathStop>, SolveError> {
         self.factorize_tangent(step)?;
-        let t = Instant::now();
-        let solves_before = self.factor.solve_seconds();
-        let direction = self
-            .previous_direction
-            .as_ref()
-            .map(|(u, l)| (u.as_slice(), *l));
-        let (series, u_hat) = compute_series(
-            self.problem,
-            &self.state,
-            self.factor,
-            self.options.order,
-            direction,
-            &mut self.tape,
-        )?;
-        self.statistics.series_assemblies += series.order() - 1;
-        self.statistics.series_seconds += t.elapsed().as_secs_f64();
-        self.statistics.series_solve_seconds += self.factor.solve_seconds() - solves_before;
+        let (series, u_hat) = self.series()?;
         let predicted = self.watch_bifurcation(step, &series, &u_hat);
         let (mut approximant, offered) = self.approximant(&series);
         let series_range = approximant.plain;
-        let mut end = self.accept_end(step, &approximant)?;
-        let mut halvings = 0;
-        let mut crossings_redone = 0;
-        while self.jumped_over_critical_point(step, &end.state)? {
-            // The end has more negative pivots than the start: the step crossed a critical
-            // point. Near a nearly perfect bifurcation the singular part of the series is too
-            // small for the step-length criteria, and a step can run along the fundamental
-            // branch past λ_c onto the unstable branch of the imperfect problem (the strip of
-            // example 2 with a 1e-5 imperfection ended at λ = 36 instead of 24.6 mm). A Padé
-            // step is redone with the series' own range, a series step with half its length.
-            if approximant.pade_at(end.step_length).is_some() {
-                approximant.pade = None;
-            } else if halvings < MAX_CROSSING_HALVINGS && self.negative_pivots == Some(0) {
-                // Only a stable start is kept stable: once the path is on an unstable branch
-                // (a crossing taken as its own), further crossings are the branch's.
-                halvings += 1;
-                approximant.pade = None;
-                approximant.plain = 0.5 * end.step_length;
-            } else {
-                // Still crossing in a small fraction of the step: a critical point of the path
-                // itself (a limit point, or a perfect bifurcation); the next step locates it.
-                break;
-            }
-            self.statistics.rejected_steps += 1;
-            crossings_redone += 1;
-            end = self.accept_end(step, &approximant)?;
-        }
+        let (end, crossings_redone) = self.end_without_crossing(step, &mut approximant)?;
         let evaluator = |a: f64| approximant.evaluate(a);
         let mut record = AnmStep {
             step,
@@ -555,7 +497,7 @@ impl<M: EnergyModel> AnmRun<'_, M> {
             self.bifurcation = Some((p, step));
         }
         steps_log.push(record);
-        self.statistics.steps = step;
+        self.linearization.statistics.steps = step;
         // The next step continues the path tangent at this step's end (not at its start: past a
         // sharp turn the two can point apart), taken from the approximant that gave the end.
         self.previous_direction = Some(approximant.derivative(end.step_length));
@@ -573,25 +515,81 @@ impl<M: EnergyModel> AnmRun<'_, M> {
         Ok(end.hit_max_load.then_some(PathStop::MaxLoad))
     }
 
+    /// The series of the step at the current point ([`compute_series`]), timed and counted.
+    fn series(&mut self) -> Result<(PathSeries, Vec<f64>), SolveError> {
+        let t = Instant::now();
+        let solves_before = self.linearization.factor().solve_seconds();
+        let direction = self
+            .previous_direction
+            .as_ref()
+            .map(|(u, l)| (u.as_slice(), *l));
+        let (series, u_hat) = compute_series(
+            self.linearization.problem(),
+            &self.state,
+            self.linearization.factor(),
+            self.options.order,
+            direction,
+            &mut self.tape,
+        )?;
+        let solve_seconds = self.linearization.factor().solve_seconds() - solves_before;
+        let statistics = &mut self.linearization.statistics;
+        statistics.series_assemblies += series.order() - 1;
+        statistics.series_seconds += t.elapsed().as_secs_f64();
+        statistics.series_solve_seconds += solve_seconds;
+        Ok((series, u_hat))
+    }
+
+    /// The step's end ([`Self::accept_end`]), redone while it jumped over a critical point
+    /// (more negative pivots than the start): returns it with the number of redos.
+    fn end_without_crossing(
+        &mut self,
+        step: usize,
+        approximant: &mut StepApproximant,
+    ) -> Result<(AcceptedEnd, usize), SolveError> {
+        let mut end = self.accept_end(step, approximant)?;
+        let mut halvings = 0;
+        let mut crossings_redone = 0;
+        while self.jumped_over_critical_point(step, &end.state)? {
+            // The end has more negative pivots than the start: the step crossed a critical
+            // point. Near a nearly perfect bifurcation the singular part of the series is too
+            // small for the step-length criteria, and a step can run along the fundamental
+            // branch past λ_c onto the unstable branch of the imperfect problem (the strip of
+            // example 2 with a 1e-5 imperfection ended at λ = 36 instead of 24.6 mm). A Padé
+            // step is redone with the series' own range, a series step with half its length.
+            if approximant.pade_at(end.step_length).is_some() {
+                approximant.pade = None;
+            } else if halvings < MAX_CROSSING_HALVINGS && self.negative_pivots == Some(0) {
+                // Only a stable start is kept stable: once the path is on an unstable branch
+                // (a crossing taken as its own), further crossings are the branch's.
+                halvings += 1;
+                approximant.pade = None;
+                approximant.plain = 0.5 * end.step_length;
+            } else {
+                // Still crossing in a small fraction of the step: a critical point of the path
+                // itself (a limit point, or a perfect bifurcation); the next step locates it.
+                break;
+            }
+            self.linearization.statistics.rejected_steps += 1;
+            crossings_redone += 1;
+            end = self.accept_end(step, approximant)?;
+        }
+        Ok((end, crossings_redone))
+    }
+
     /// Assembles and factorises the tangent at the step's start; a change of its inertia
     /// (negative pivots of $`LDL^\top`$, none after $`LL^\top`$) reveals a critical point crossed
     /// during the previous step, which is then located.
     fn factorize_tangent(&mut self, step: usize) -> Result<(), SolveError> {
         if !std::mem::take(&mut self.start_factorized) {
-            let (problem, state) = (self.problem, &self.state);
-            Self::assemble_and_factorize(
-                problem,
-                state,
-                &mut self.matrix,
-                self.factor,
-                &mut self.statistics,
-            )
-            .map_err(SolveError::linear(format!(
-                "ANM step {step} at load {:.6e}: tangent factorisation",
-                self.state.load
-            )))?;
+            let state = &self.state;
+            self.linearization
+                .factorize(&state.displacement, state.load)
+                .map_err(SolveError::linear(format!(
+                    "ANM step {step} at load {:.6e}: tangent factorisation",
+                    state.load
+                )))?;
         }
-        let negative = self.factor.negative_pivots();
+        let negative = self.linearization.negative_pivots();
         if let (Some(before), Some(now)) = (self.negative_pivots, negative)
             && now > before
             && self.bifurcation.is_none()
@@ -600,25 +598,6 @@ impl<M: EnergyModel> AnmRun<'_, M> {
             self.locate_crossed_critical_point(step - 1);
         }
         self.negative_pivots = negative;
-        Ok(())
-    }
-
-    /// The tangent at `state` into `matrix`, factorised into `factor` (timed and counted).
-    fn assemble_and_factorize(
-        problem: &Problem<M>,
-        state: &PathState,
-        matrix: &mut SparseMatrix,
-        factor: &mut SparseFactorization,
-        statistics: &mut PathStatistics,
-    ) -> Result<(), crate::linear::error::LinearError> {
-        let t = Instant::now();
-        problem.tangent_into(&state.displacement, state.load, matrix);
-        statistics.tangent_assemblies += 1;
-        statistics.assembly_seconds += t.elapsed().as_secs_f64();
-        let t = Instant::now();
-        factor.factorize(matrix)?;
-        statistics.factorizations += 1;
-        statistics.factorization_seconds += t.elapsed().as_secs_f64();
         Ok(())
     }
 
@@ -635,35 +614,28 @@ impl<M: EnergyModel> AnmRun<'_, M> {
         let Some(before) = self.negative_pivots else {
             return Ok(false);
         };
-        let (mut matrix, mut factor) = match self.end_check.take() {
-            Some(pair) => pair,
-            None => (
-                self.problem.new_matrix(),
-                SparseFactorization::analyze(self.problem.assembler.pattern()).map_err(
-                    SolveError::linear(format!(
-                        "ANM step {step}: symbolic analysis for the end-point check"
-                    )),
-                )?,
-            ),
+        let mut spare = match self.end_check.take() {
+            Some(spare) => spare,
+            None => self
+                .linearization
+                .spare()
+                .map_err(SolveError::linear(format!(
+                    "ANM step {step}: symbolic analysis for the end-point check"
+                )))?,
         };
-        let factorized = Self::assemble_and_factorize(
-            self.problem,
-            end,
-            &mut matrix,
-            &mut factor,
-            &mut self.statistics,
-        );
-        let jumped = match (factorized, factor.negative_pivots()) {
+        let factorized =
+            self.linearization
+                .factorize_spare(&mut spare, &end.displacement, end.load);
+        let jumped = match (factorized, spare.negative_pivots()) {
             (Err(_), _) => true,
             (Ok(()), Some(after)) => after > before,
             (Ok(()), None) => false,
         };
         if !jumped {
-            std::mem::swap(&mut self.matrix, &mut matrix);
-            std::mem::swap(self.factor, &mut factor);
+            self.linearization.adopt(&mut spare);
             self.start_factorized = true;
         }
-        self.end_check = Some((matrix, factor));
+        self.end_check = Some(spare);
         Ok(jumped)
     }
 
@@ -674,30 +646,37 @@ impl<M: EnergyModel> AnmRun<'_, M> {
             return;
         };
         let t = Instant::now();
-        let located = SparseFactorization::analyze(self.problem.assembler.pattern())
+        let problem = self.linearization.problem();
+        let statistics = &mut self.linearization.statistics;
+        let located = SparseFactorization::analyze(problem.assembler.pattern())
             .map_err(SolveError::linear(
                 "locating a critical point: symbolic analysis",
             ))
             .and_then(|mut factor| {
-                let mut tangent = self.problem.new_matrix();
-                self.problem
-                    .tangent_into(&start.displacement, start.load, &mut tangent);
-                factor.factorize(&tangent).map_err(SolveError::linear(
+                let mut tangent = problem.new_matrix();
+                factorize_tangent(
+                    problem,
+                    &start.displacement,
+                    start.load,
+                    &mut tangent,
+                    &mut factor,
+                )
+                .map_err(SolveError::linear(
                     "locating a critical point: factorisation at the previous step's start",
                 ))?;
-                self.statistics.factorizations += 1;
+                statistics.factorizations += 1;
                 predict_bifurcation(
-                    self.problem,
+                    problem,
                     &start,
                     &u_hat,
                     &factor,
                     &tangent,
                     None,
                     None,
-                    &mut self.statistics,
+                    &mut statistics.factorizations,
                 )
             });
-        self.statistics.bifurcation_seconds += t.elapsed().as_secs_f64();
+        statistics.bifurcation_seconds += t.elapsed().as_secs_f64();
         match located {
             Ok(load) => self.bifurcation = Some((load, crossed_in)),
             Err(error) => self.warnings.push(format!(
@@ -726,17 +705,20 @@ impl<M: EnergyModel> AnmRun<'_, M> {
         }
         let t = Instant::now();
         let start = self.options.bifurcation_mode_guess.clone();
+        let mut factorizations = 0;
         let predicted = predict_bifurcation(
-            self.problem,
+            self.linearization.problem(),
             &self.state,
             u_hat,
-            self.factor,
-            &self.matrix,
+            self.linearization.factor(),
+            self.linearization.tangent(),
             start,
             self.options.bifurcation_load_guess,
-            &mut self.statistics,
+            &mut factorizations,
         );
-        self.statistics.bifurcation_seconds += t.elapsed().as_secs_f64();
+        let statistics = &mut self.linearization.statistics;
+        statistics.factorizations += factorizations;
+        statistics.bifurcation_seconds += t.elapsed().as_secs_f64();
         match predicted {
             Ok(load) => {
                 self.prediction = Some(load);
@@ -775,53 +757,28 @@ impl<M: EnergyModel> AnmRun<'_, M> {
         (approximant, offered)
     }
 
-    /// The step's end point: the step length (capped, shortened to hit `max_load`), then the
-    /// residual check, a Riks correction when needed, or halving. A Padé end that misses the
-    /// tolerance is halved towards the series' range first and never corrected: in the strip of
-    /// example 2 such an end (range 522 against the series' 54) was corrected in 2 iterations,
-    /// but 6 of its 10 interior points missed the tolerance, and the path's last point
-    /// overshot the amplitude target 4 h to 6.2 h.
+    /// The step's end point: the step length ([`Self::first_end`]), then the residual check,
+    /// a Riks correction when needed ([`Self::corrected_end`]), or halving. A Padé end that
+    /// misses the tolerance is halved towards the series' range first and never corrected: in
+    /// the strip of example 2 such an end (range 522 against the series' 54) was corrected in
+    /// 2 iterations, but 6 of its 10 interior points missed the tolerance, and the path's last
+    /// point overshot the amplitude target 4 h to 6.2 h.
     fn accept_end(
         &mut self,
         step: usize,
         approximant: &StepApproximant,
     ) -> Result<AcceptedEnd, SolveError> {
-        let options = self.options;
-        let evaluator = |a: f64| approximant.evaluate(a);
-        let mut a = approximant.range();
-        if !a.is_finite() {
-            a = if options.max_step_length.is_finite() {
-                options.max_step_length
-            } else {
-                1.0
-            };
-        }
-        a = a.min(options.max_step_length);
-        let mut hit_max_load = false;
-        if let Some(max_load) = options.max_load
-            && evaluator(a).load >= max_load
-            && self.state.load < max_load
-        {
-            // Bisection for λ(a*) = max_load.
-            let (mut lo, mut hi) = (0.0, a);
-            for _ in 0..60 {
-                let mid = 0.5 * (lo + hi);
-                if evaluator(mid).load < max_load {
-                    lo = mid
-                } else {
-                    hi = mid
-                }
-            }
-            a = hi;
-            hit_max_load = true;
-        }
+        let tolerance = self.options.residual_tolerance;
+        let (mut a, mut hit_max_load) = self.first_end(approximant);
         // Halvings of a series end; shortening a Padé end towards the series' range does not
         // count (it ends there after log2(range / series range) tries, residual checks only).
         let mut halvings = 0;
         while halvings <= MAX_END_HALVINGS {
-            let candidate = evaluator(a);
-            let residual = self.relative_residual(&candidate.displacement, candidate.load);
-            if residual.is_finite() && residual <= options.residual_tolerance {
+            let candidate = approximant.evaluate(a);
+            let residual = self
+                .linearization
+                .relative_residual(&candidate.displacement, candidate.load);
+            if residual.is_finite() && residual <= tolerance {
                 return Ok(AcceptedEnd {
                     state: candidate,
                     residual,
@@ -835,41 +792,18 @@ impl<M: EnergyModel> AnmRun<'_, M> {
                 // accuracy, and the step's interior is no better than its end. It is shortened
                 // towards the series' range, not corrected (a corrected end would leave the
                 // interior points off the path, and the dense output without them).
-                self.statistics.rejected_steps += 1;
+                self.linearization.statistics.rejected_steps += 1;
                 a = (0.5 * a).max(approximant.plain);
                 hit_max_load = false;
                 continue;
             }
             // Riks corrector on the arc through the predicted point (works through limit points).
-            if residual.is_finite() {
-                let riks = RiksOptions {
-                    tolerance: options.residual_tolerance * 1e-2,
-                    max_iterations: options.corrector.max_iterations,
-                    load_scale: 1.0,
-                    constraint: ArcLengthConstraint::Linearized,
-                    ..RiksOptions::default()
-                };
-                if let Ok(c) = correct_on_arc(
-                    self.problem,
-                    self.factor,
-                    &self.state,
-                    &candidate,
-                    &riks,
-                    &mut self.statistics,
-                ) {
-                    self.statistics.corrections += 1;
-                    if c.relative_residual <= options.residual_tolerance {
-                        return Ok(AcceptedEnd {
-                            state: c.state,
-                            residual: c.relative_residual,
-                            corrections: c.iterations,
-                            step_length: a,
-                            hit_max_load,
-                        });
-                    }
-                }
+            if residual.is_finite()
+                && let Some(end) = self.corrected_end(&candidate, a, hit_max_load)
+            {
+                return Ok(end);
             }
-            self.statistics.rejected_steps += 1;
+            self.linearization.statistics.rejected_steps += 1;
             a *= 0.5;
             hit_max_load = false;
             halvings += 1;
@@ -877,9 +811,60 @@ impl<M: EnergyModel> AnmRun<'_, M> {
         Err(SolveError::Path {
             load: self.state.load,
             message: format!(
-                "step {step}: residual above tolerance {:.1e} even after {MAX_END_HALVINGS} halvings and arc-length corrections",
-                options.residual_tolerance
+                "step {step}: residual above tolerance {tolerance:.1e} even after {MAX_END_HALVINGS} halvings and arc-length corrections"
             ),
+        })
+    }
+
+    /// The first end tried: the approximant's range (capped by `max_step_length`, 1 when
+    /// both are infinite), shortened to land on `max_load` when the step passes it; and whether
+    /// it was.
+    fn first_end(&self, approximant: &StepApproximant) -> (f64, bool) {
+        let options = self.options;
+        let mut a = approximant.range();
+        if !a.is_finite() {
+            a = if options.max_step_length.is_finite() {
+                options.max_step_length
+            } else {
+                1.0
+            };
+        }
+        a = a.min(options.max_step_length);
+        if let Some(max_load) = options.max_load
+            && approximant.evaluate(a).load >= max_load
+            && self.state.load < max_load
+        {
+            let a = parameter_at_load(|a| approximant.evaluate(a).load, a, max_load);
+            return (a, true);
+        }
+        (a, false)
+    }
+
+    /// The Riks correction of a candidate end off the path, on the arc through it about the
+    /// step's start ([`correct_on_arc`], to `residual_tolerance / 100`): the end when the
+    /// correction converged to the residual tolerance.
+    fn corrected_end(
+        &mut self,
+        candidate: &PathState,
+        step_length: f64,
+        hit_max_load: bool,
+    ) -> Option<AcceptedEnd> {
+        let options = self.options;
+        let corrector = ArcCorrectorOptions {
+            tolerance: options.residual_tolerance * 1e-2,
+            max_iterations: options.corrector.max_iterations,
+            load_scale: 1.0,
+            constraint: ArcLengthConstraint::Linearized,
+        };
+        let corrected =
+            correct_on_arc(&mut self.linearization, &self.state, candidate, &corrector).ok()?;
+        self.linearization.statistics.corrections += 1;
+        (corrected.relative_residual <= options.residual_tolerance).then_some(AcceptedEnd {
+            state: corrected.state,
+            residual: corrected.relative_residual,
+            corrections: corrected.iterations,
+            step_length,
+            hit_max_load,
         })
     }
 
@@ -895,7 +880,9 @@ impl<M: EnergyModel> AnmRun<'_, M> {
         let count = self.options.interior_points;
         for k in 1..=count {
             let inner = evaluator(length * k as f64 / (count + 1) as f64);
-            let residual = self.relative_residual(&inner.displacement, inner.load);
+            let residual = self
+                .linearization
+                .relative_residual(&inner.displacement, inner.load);
             if residual.is_nan() || residual > self.options.residual_tolerance {
                 continue;
             }
@@ -907,7 +894,7 @@ impl<M: EnergyModel> AnmRun<'_, M> {
                 predicted_bifurcation: predicted,
             };
             if observer(&event) == PathControl::Stop {
-                self.statistics.steps = step;
+                self.linearization.statistics.steps = step;
                 self.state = inner;
                 return Some(PathStop::Observer);
             }
@@ -919,7 +906,8 @@ impl<M: EnergyModel> AnmRun<'_, M> {
 /// Smallest bifurcation load ahead, from linear buckling about `state` along the path tangent
 /// $`dU/d\lambda = \hat U`$: $`(K_t + \mu\,\partial_\lambda K_t)\varphi = 0`$,
 /// $`\lambda_b = \lambda + \mu`$. `tangent` must be $`K_t`$ at `state` and `factor` its
-/// factorisation; `start` warm-starts the eigen-solver.
+/// factorisation; `start` warm-starts the eigen-solver. The factorisations it makes are added
+/// to `factorizations`.
 ///
 /// **Shifted towards a guess.** With a guess $`\lambda_g > \lambda`$ of the bifurcation load
 /// (the threshold of a linear buckling analysis), the eigen-solve is first done about
@@ -941,7 +929,7 @@ fn predict_bifurcation<M: EnergyModel>(
     tangent: &SparseMatrix,
     start: Option<Vec<f64>>,
     load_guess: Option<f64>,
-    statistics: &mut PathStatistics,
+    factorizations: &mut usize,
 ) -> Result<f64, SolveError> {
     let mut b = problem.new_matrix();
     problem.tangent_derivative_into(&state.displacement, state.load, u_hat, 1.0, &mut b);
@@ -961,7 +949,7 @@ fn predict_bifurcation<M: EnergyModel>(
         let ahead = SparseFactorization::analyze(problem.assembler.pattern())
             .ok()
             .and_then(|mut shifted_factor| {
-                statistics.factorizations += 1;
+                *factorizations += 1;
                 shifted_factor.factorize(&shifted).ok()?;
                 (shifted_factor.negative_pivots() == Some(0)).then_some(shifted_factor)
             })

@@ -10,6 +10,7 @@
 //! (flat membranes under in-plane loads).
 
 use super::error::SolveError;
+use super::linearization::{factorize_tangent, load_tangent};
 use super::newton::{NewtonOptions, newton};
 use crate::linear::eigen::{BucklingOptions, smallest_positive_buckling};
 use crate::linear::factor::SparseFactorization;
@@ -86,8 +87,7 @@ pub fn linear_buckling<M: EnergyModel>(
         _ => vec![0.0; n],
     };
     let pre = newton(problem, initial, load, factor, &mut a, &options.newton)?;
-    problem.tangent_into(&pre.solution, load, &mut a);
-    factor.factorize(&a).map_err(SolveError::linear(
+    factorize_tangent(problem, &pre.solution, load, &mut a, factor).map_err(SolveError::linear(
         "linear buckling: factorisation of the pre-buckling tangent",
     ))?;
     // The eigen-solver needs A positive definite: say so before assembling what it would use.
@@ -96,12 +96,7 @@ pub fn linear_buckling<M: EnergyModel>(
             "linear buckling: the tangent at the reference load {load:e} has {negative} negative pivots: the reference state is already beyond a critical point"
         )));
     }
-    let mut rate = problem.load_derivative(&pre.solution, load);
-    for r in rate.iter_mut() {
-        *r = -*r;
-    }
-    factor
-        .solve_in_place(&mut rate)
+    let rate = load_tangent(problem, factor, &pre.solution, load)
         .map_err(SolveError::linear("linear buckling: load rate"))?;
     let mut b = problem.new_matrix();
     problem.tangent_derivative_into(&pre.solution, load, &rate, 1.0, &mut b);

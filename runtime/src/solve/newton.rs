@@ -1,6 +1,7 @@
 //! Newton–Raphson at a fixed load parameter.
 
 use super::error::SolveError;
+use super::linearization::factorize_tangent;
 use crate::linear::factor::SparseFactorization;
 use crate::linear::pattern::SparseMatrix;
 use crate::linear::vector::norm;
@@ -84,12 +85,9 @@ pub fn newton<M: EnergyModel>(
                 tolerance: options.tolerance,
             });
         }
-        problem.tangent_into(&u, load, matrix);
-        factor
-            .factorize(matrix)
-            .map_err(SolveError::linear(format!(
-                "Newton at load {load:.6e}, iteration {iterations}: tangent factorisation"
-            )))?;
+        factorize_tangent(problem, &u, load, matrix, factor).map_err(SolveError::linear(
+            format!("Newton at load {load:.6e}, iteration {iterations}: tangent factorisation"),
+        ))?;
         for r in residual.iter_mut() {
             *r = -*r;
         }

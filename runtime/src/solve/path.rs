@@ -120,6 +120,18 @@ impl PathStatistics {
         self.residual_seconds += clock.elapsed().as_secs_f64();
         residual
     }
+
+    /// Adds the linear-algebra work counted in `work` — factorisations, tangent and residual
+    /// assemblies and their times — but not its steps, corrections or rejections (e.g. an
+    /// arc-length correction's Newton iterations inside an ANM step).
+    pub fn add_linear_work(&mut self, work: &PathStatistics) {
+        self.factorizations += work.factorizations;
+        self.tangent_assemblies += work.tangent_assemblies;
+        self.residual_assemblies += work.residual_assemblies;
+        self.residual_seconds += work.residual_seconds;
+        self.assembly_seconds += work.assembly_seconds;
+        self.factorization_seconds += work.factorization_seconds;
+    }
 }
 
 /// The outcome of a path-following run: whatever was computed, and why it ended.

@@ -13,16 +13,10 @@
 //!   scaled to length $`\ell`$; its orientation follows the previous increment (sign of the dot
 //!   product in the arc-length metric), the first step increases $`\lambda`$. When the tangent at
 //!   the accepted point cannot be factorised, the previous increment (secant) is used instead.
-//! * **Corrector**: full Newton on the bordered system
-//!   $$`\begin{pmatrix} K_t & \partial_\lambda R \\ 2\Delta U^\top & 2\psi^2\Delta\lambda\end{pmatrix}
-//!   \begin{pmatrix}\delta U\\ \delta\lambda\end{pmatrix} = -\begin{pmatrix} R \\ g\end{pmatrix},
-//!   \qquad g = \|\Delta U\|^2 + \psi^2\Delta\lambda^2 - \ell^2,`$$
-//!   solved by the two-solve (Batoz–Dhatt) trick with the factorised $`K_t`$ only:
-//!   $`\delta U = \delta U_R + \delta\lambda\,\delta U_F`$ with $`K_t\,\delta U_R = -R`$ and
-//!   $`K_t\,\delta U_F = -\partial_\lambda R`$, and $`\delta\lambda`$ from the linearised constraint
-//!   ([`ArcLengthConstraint::Linearized`]) or from the exact sphere
-//!   ([`ArcLengthConstraint::Spherical`], Crisfield: the root closest in angle to the current
-//!   increment). The tangent is reassembled and refactorised every iteration.
+//! * **Corrector**: full Newton on the bordered system of the arc-length constraint
+//!   ([`arc_length`](super::arc_length): the two-solve trick, the linearised or spherical
+//!   constraint of [`RiksOptions::constraint`]). The tangent is reassembled and refactorised
+//!   every iteration.
 //! * **Crossing guard**: the tangent at each accepted point is factorised at once (it is the
 //!   next step's predictor tangent, so this costs nothing when the point is kept). When it has
 //!   negative pivots after a stable start (none) and the path tangent there still moves the load
@@ -45,29 +39,20 @@
 //!   length is capped the same way, so that the knee of a response whose wrinkles are small
 //!   beside the in-plane displacements (which dominate the arc length) is resolved.
 
+use std::borrow::Cow;
 use std::time::Instant;
 
+pub use super::arc_length::ArcLengthConstraint;
+use super::arc_length::{
+    ArcCorrection, ArcCorrectorOptions, arc_dot, correct, increment, orientation,
+};
 use super::error::SolveError;
-use super::path::{PathControl, PathEvent, PathResult, PathState, PathStatistics, PathStop};
-use crate::linear::LinearError;
+use super::linearization::Linearization;
+use super::path::{PathControl, PathEvent, PathResult, PathState, PathStop};
 use crate::linear::factor::SparseFactorization;
-use crate::linear::pattern::SparseMatrix;
-use crate::linear::vector::dot;
+use crate::linear::vector::norm;
 use crate::model::EnergyModel;
 use crate::problem::Problem;
-
-/// Which arc-length equation the corrector enforces.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ArcLengthConstraint {
-    /// Newton on the constraint: $`\delta\lambda`$ from its linearisation at the current
-    /// iterate (Riks–Wempner). Always solvable unless the bordered system is singular; the
-    /// converged point lies on the sphere.
-    Linearized,
-    /// Crisfield's spherical constraint: $`\delta\lambda`$ solves the quadratic
-    /// $`\|\Delta U + \delta U_R + \delta\lambda\,\delta U_F\|^2 + \psi^2(\Delta\lambda + \delta\lambda)^2 = \ell^2`$
-    /// exactly (a step without real root is rejected).
-    Spherical,
-}
 
 /// Halvings of a step that jumped over a bifurcation (negative pivots at its end after a
 /// stable start, the load still moving the same way) before the crossing is taken as the
@@ -223,97 +208,17 @@ impl RiksOptions {
     }
 }
 
-/// Why one step attempt failed.
-enum StepFailure {
-    /// The corrector did not reach the tolerance.
-    NoConvergence { iterations: usize, residual: f64 },
-    /// The tangent could not be factorised (or solved with).
-    Singular {
-        load: f64,
-        iteration: usize,
-        source: LinearError,
-    },
-    /// NaN or infinity appeared.
-    NonFinite { location: String },
-    /// The spherical constraint has no real root, or the bordered system is singular.
-    Constraint { message: String },
-}
-
-impl StepFailure {
-    fn describe(&self, tolerance: f64) -> String {
-        match self {
-            StepFailure::NoConvergence {
-                iterations,
-                residual,
-            } => format!(
-                "no convergence after {iterations} iterations (relative residual {residual:.3e}, \
-                 tolerance {tolerance:.1e})"
-            ),
-            StepFailure::Singular {
-                load,
-                iteration,
-                source,
-            } => format!("singular tangent at load {load:.6e}, iteration {iteration}: {source}"),
-            StepFailure::NonFinite { location } => {
-                format!("non-finite values (NaN or infinity) in {location}")
-            }
-            StepFailure::Constraint { message } => message.clone(),
+impl RiksOptions {
+    /// The settings of the arc-length corrector of each step: the tolerance, iteration cap,
+    /// load weight $`\psi`$ and constraint. Also the corrector of `wrinkle run`'s landing.
+    pub fn corrector(&self) -> ArcCorrectorOptions {
+        ArcCorrectorOptions {
+            tolerance: self.tolerance,
+            max_iterations: self.max_iterations,
+            load_scale: self.load_scale,
+            constraint: self.constraint,
         }
     }
-}
-
-/// Arc-length norm squared $`\|a\|^2 + \psi^2 b^2`$ style inner product.
-fn arc_dot(u: &[f64], load_u: f64, v: &[f64], load_v: f64, load_scale: f64) -> f64 {
-    dot(u, v) + load_scale * load_scale * load_u * load_v
-}
-
-/// Tangent assembly + factorisation + solves, with the work counters.
-struct Linearization<'a, M: EnergyModel> {
-    problem: &'a Problem<M>,
-    factor: &'a mut SparseFactorization,
-    matrix: SparseMatrix,
-    statistics: PathStatistics,
-}
-
-impl<M: EnergyModel> Linearization<'_, M> {
-    /// Assembles and factorises $`K_t(U, \lambda)`$.
-    fn factorize(&mut self, displacement: &[f64], load: f64) -> Result<(), LinearError> {
-        let clock = Instant::now();
-        self.problem
-            .tangent_into(displacement, load, &mut self.matrix);
-        self.statistics.tangent_assemblies += 1;
-        self.statistics.assembly_seconds += clock.elapsed().as_secs_f64();
-        let clock = Instant::now();
-        let result = self.factor.factorize(&self.matrix);
-        self.statistics.factorizations += 1;
-        self.statistics.factorization_seconds += clock.elapsed().as_secs_f64();
-        result.map(|_| ())
-    }
-
-    /// $`\delta U_F = -K_t^{-1}\,\partial R/\partial\lambda`$ with the current factorisation.
-    fn load_tangent(&mut self, displacement: &[f64], load: f64) -> Result<Vec<f64>, LinearError> {
-        let mut derivative = self.problem.load_derivative(displacement, load);
-        self.statistics.residual_assemblies += 1;
-        for value in derivative.iter_mut() {
-            *value = -*value;
-        }
-        self.factor.solve_in_place(&mut derivative)?;
-        Ok(derivative)
-    }
-
-    /// $`(R, \|R\|/\text{scale})`$ at a point.
-    fn residual(&mut self, displacement: &[f64], load: f64) -> (Vec<f64>, f64) {
-        let problem = self.problem;
-        self.statistics
-            .time_residual(|| problem.residual_with_relative(displacement, load))
-    }
-}
-
-/// A converged step.
-struct Corrected {
-    state: PathState,
-    iterations: usize,
-    relative_residual: f64,
 }
 
 /// Traces $`R(U, \lambda) = 0`$ from `start` with Newton–Riks (see the [module](self) for the
@@ -338,16 +243,12 @@ pub fn follow_path_riks<M: EnergyModel>(
     observer: &mut dyn FnMut(&PathEvent) -> PathControl,
 ) -> PathResult {
     let clock = Instant::now();
-    let mut linearization = Linearization {
-        problem,
-        factor,
-        matrix: problem.new_matrix(),
-        statistics: PathStatistics::default(),
-    };
+    let mut linearization = Linearization::new(problem, factor);
     let (stop, last) = trace(&mut linearization, start, options, observer);
+    let factor_nonzeros = linearization.factor().factor_nnz();
     let mut statistics = linearization.statistics;
     statistics.total_seconds = clock.elapsed().as_secs_f64();
-    statistics.factor_nonzeros = Some(linearization.factor.factor_nnz());
+    statistics.factor_nonzeros = Some(factor_nonzeros);
     PathResult {
         last,
         statistics,
@@ -357,45 +258,21 @@ pub fn follow_path_riks<M: EnergyModel>(
     }
 }
 
-/// The path loop; returns why it ended and the last accepted point.
+/// A failure of the path at `load`.
+fn failed(load: f64, message: String) -> PathStop {
+    PathStop::Failed(SolveError::Path { load, message })
+}
+
+/// The path: checks and reports the start, sets up the arc-length metric, then steps until a
+/// stop; returns why it ended and the last accepted point.
 fn trace<M: EnergyModel>(
     linearization: &mut Linearization<'_, M>,
     start: PathState,
     options: &RiksOptions,
     observer: &mut dyn FnMut(&PathEvent) -> PathControl,
 ) -> (PathStop, PathState) {
-    let failed = |load: f64, message: String| PathStop::Failed(SolveError::Path { load, message });
-    if let Err(message) = options.validate() {
-        let load = start.load;
-        return (
-            failed(load, format!("Newton–Riks: invalid option: {message}")),
-            start,
-        );
-    }
-    let free_count = linearization.problem.free_count();
-    if start.displacement.len() != free_count {
-        let message = format!(
-            "Newton–Riks: the start point has {} displacement values, the problem has {free_count} \
-             free dofs",
-            start.displacement.len()
-        );
-        return (failed(start.load, message), start);
-    }
-    if let Some(dof) = options
-        .amplitude
-        .iter()
-        .flat_map(|a| &a.dofs)
-        .find(|&&dof| dof >= free_count)
-    {
-        let message = format!(
-            "Newton–Riks: invalid option: amplitude dof {dof} out of range ({free_count} free \
-             dofs)"
-        );
-        return (failed(start.load, message), start);
-    }
-    if !start.load.is_finite() || start.displacement.iter().any(|u| !u.is_finite()) {
-        let location = "the start point of the Newton–Riks path".to_string();
-        return (PathStop::Failed(SolveError::NonFinite { location }), start);
+    if let Err(stop) = check_start(linearization.problem().free_count(), &start, options) {
+        return (stop, start);
     }
     let (_, start_residual) = linearization.residual(&start.displacement, start.load);
     if !start_residual.is_finite() {
@@ -420,87 +297,225 @@ fn trace<M: EnergyModel>(
     {
         return (PathStop::MaxLoad, start);
     }
+    let metric = match ArcMetric::at_start(linearization, &start, options) {
+        Ok(metric) => metric,
+        Err(stop) => return (stop, start),
+    };
+    let path = RiksPath {
+        arc_length: metric.options.initial_arc_length,
+        options: metric.options,
+        linearization,
+        current: start,
+        previous: None,
+        start_factorized: metric.start_factorized,
+        start_tangent: metric.start_tangent,
+    };
+    path.run(observer)
+}
 
-    // Whether the factorisation in hand is the tangent at `current` (the start's, or the
-    // previous step's end check), so that the step does not factorise it again.
-    let mut start_factorized = false;
-    // The load tangent at the start when the arc-length scale has solved for it already.
-    let mut start_tangent = None;
-    let normalized;
-    let options = match options.reference_load {
-        None => options,
-        Some(reference) => {
-            let response = linearization
-                .factorize(&start.displacement, start.load)
-                .and_then(|()| linearization.load_tangent(&start.displacement, start.load));
-            let scale = match response {
-                Ok(tangent) => {
-                    let scale = reference.abs() * dot(&tangent, &tangent).sqrt();
-                    start_tangent = Some(tangent);
-                    scale
-                }
-                Err(source) => {
-                    let context = format!(
-                        "Newton–Riks at load {:.6e}: singular tangent at the start point (no \
-                         arc-length scale)",
-                        start.load
-                    );
-                    return (
-                        PathStop::Failed(SolveError::Linear { context, source }),
-                        start,
-                    );
-                }
-            };
-            if !(scale > 0.0 && scale.is_finite()) {
-                let message = format!(
-                    "Newton–Riks: the linear response to the reference load {reference:e} has \
-                     norm {scale:e}; the dimensionless arc length needs a load that moves the \
-                     displacements"
-                );
-                return (failed(start.load, message), start);
-            }
-            start_factorized = true;
-            normalized = RiksOptions {
+/// The options and start point checked before any work: an invalid option, a start point of
+/// the wrong size or with non-finite values, or a monitored dof out of range.
+fn check_start(
+    free_count: usize,
+    start: &PathState,
+    options: &RiksOptions,
+) -> Result<(), PathStop> {
+    if let Err(message) = options.validate() {
+        return Err(failed(
+            start.load,
+            format!("Newton–Riks: invalid option: {message}"),
+        ));
+    }
+    if start.displacement.len() != free_count {
+        let message = format!(
+            "Newton–Riks: the start point has {} displacement values, the problem has {free_count} \
+             free dofs",
+            start.displacement.len()
+        );
+        return Err(failed(start.load, message));
+    }
+    if let Some(dof) = options
+        .amplitude
+        .iter()
+        .flat_map(|a| &a.dofs)
+        .find(|&&dof| dof >= free_count)
+    {
+        let message = format!(
+            "Newton–Riks: invalid option: amplitude dof {dof} out of range ({free_count} free \
+             dofs)"
+        );
+        return Err(failed(start.load, message));
+    }
+    if !start.load.is_finite() || start.displacement.iter().any(|u| !u.is_finite()) {
+        let location = "the start point of the Newton–Riks path".to_string();
+        return Err(PathStop::Failed(SolveError::NonFinite { location }));
+    }
+    Ok(())
+}
+
+/// The arc-length metric of a path: the options in the units the steps take (the
+/// dimensionless arc length of [`RiksOptions::reference_load`] turned into displacement
+/// units), and what computing it left at the start.
+struct ArcMetric<'o> {
+    options: Cow<'o, RiksOptions>,
+    /// The tangent at the start is factorised already.
+    start_factorized: bool,
+    /// The load tangent at the start, when the scale solved for it.
+    start_tangent: Option<Vec<f64>>,
+}
+
+impl<'o> ArcMetric<'o> {
+    /// Without a reference load, `options` as they are; with one, the scale
+    /// $`s = |\lambda_\text{ref}|\,\|\delta U_F\|`$ from the tangent at the start, which
+    /// multiplies the three arc lengths and sets $`\psi = s/|\lambda_\text{ref}|`$.
+    fn at_start<M: EnergyModel>(
+        linearization: &mut Linearization<'_, M>,
+        start: &PathState,
+        options: &'o RiksOptions,
+    ) -> Result<Self, PathStop> {
+        let Some(reference) = options.reference_load else {
+            return Ok(ArcMetric {
+                options: Cow::Borrowed(options),
+                start_factorized: false,
+                start_tangent: None,
+            });
+        };
+        let response = linearization
+            .factorize(&start.displacement, start.load)
+            .and_then(|()| linearization.load_tangent(&start.displacement, start.load));
+        let tangent = response.map_err(|source| {
+            let context = format!(
+                "Newton–Riks at load {:.6e}: singular tangent at the start point (no \
+                 arc-length scale)",
+                start.load
+            );
+            PathStop::Failed(SolveError::Linear { context, source })
+        })?;
+        let scale = reference.abs() * norm(&tangent);
+        if !(scale > 0.0 && scale.is_finite()) {
+            let message = format!(
+                "Newton–Riks: the linear response to the reference load {reference:e} has \
+                 norm {scale:e}; the dimensionless arc length needs a load that moves the \
+                 displacements"
+            );
+            return Err(failed(start.load, message));
+        }
+        Ok(ArcMetric {
+            options: Cow::Owned(RiksOptions {
                 initial_arc_length: options.initial_arc_length * scale,
                 min_arc_length: options.min_arc_length * scale,
                 max_arc_length: options.max_arc_length * scale,
                 load_scale: scale / reference.abs(),
                 reference_load: None,
                 ..options.clone()
+            }),
+            start_factorized: true,
+            start_tangent: Some(tangent),
+        })
+    }
+}
+
+/// The state of a Newton–Riks path between steps.
+struct RiksPath<'p, 'a, 'o, M: EnergyModel> {
+    linearization: &'p mut Linearization<'a, M>,
+    /// The options in the units of the steps ([`ArcMetric`]).
+    options: Cow<'o, RiksOptions>,
+    /// The last accepted point.
+    current: PathState,
+    /// The arc length of the next step attempt.
+    arc_length: f64,
+    /// Increment $`(\Delta U, \Delta\lambda)`$ of the last accepted step.
+    previous: Option<(Vec<f64>, f64)>,
+    /// Whether the factorisation in hand is the tangent at `current` (the start's, or the
+    /// previous step's end check), so that the step does not factorise it again.
+    start_factorized: bool,
+    /// The load tangent at the start when the arc-length scale has solved for it already.
+    start_tangent: Option<Vec<f64>>,
+}
+
+/// A step's unit predictor direction in the arc-length metric.
+struct Predictor {
+    direction: Vec<f64>,
+    load_direction: f64,
+    /// Negative pivots of the tangent at the step's start, for the crossing guard.
+    start_pivots: Option<usize>,
+}
+
+/// What the amplitude control makes of a converged step end.
+enum AmplitudeVerdict {
+    /// The monitored dofs changed too much: redo the step with the shortened arc length.
+    Redo,
+    /// Keep the end; the largest change of the monitored dofs and its bound (`None` without
+    /// amplitude control).
+    Keep(Option<(f64, f64)>),
+}
+
+/// A step's converged end, with the largest change of the monitored dofs and its bound.
+struct AcceptedStep {
+    corrected: ArcCorrection,
+    amplitude_change: Option<(f64, f64)>,
+}
+
+impl<M: EnergyModel> RiksPath<'_, '_, '_, M> {
+    /// Steps until a stop: predictor, converged step, arc-length adaptation, report.
+    fn run(mut self, observer: &mut dyn FnMut(&PathEvent) -> PathControl) -> (PathStop, PathState) {
+        let mut step = 0;
+        loop {
+            if step == self.options.max_steps {
+                return (PathStop::MaxSteps, self.current);
+            }
+            step += 1;
+            let accepted = match self
+                .predictor(step)
+                .and_then(|predictor| self.converge(step, &predictor))
+            {
+                Ok(accepted) => accepted,
+                Err(stop) => return (stop, self.current),
             };
-            &normalized
+            let relative_residual = accepted.corrected.relative_residual;
+            self.accept(accepted);
+            let event = PathEvent {
+                step,
+                interior: false,
+                state: &self.current,
+                relative_residual,
+                predicted_bifurcation: None,
+            };
+            if observer(&event) == PathControl::Stop {
+                return (PathStop::Observer, self.current);
+            }
+            if let Some(max_load) = self.options.max_load
+                && self.current.load >= max_load
+            {
+                return (PathStop::MaxLoad, self.current);
+            }
         }
-    };
-    let load_scale = options.load_scale;
-    let mut current = start;
-    let mut arc_length = options.initial_arc_length;
-    // Increment (ΔU, Δλ) of the last accepted step.
-    let mut previous: Option<(Vec<f64>, f64)> = None;
-    let mut step = 0;
-    loop {
-        if step == options.max_steps {
-            return (PathStop::MaxSteps, current);
-        }
-        step += 1;
-        // Unit predictor direction (in the arc-length metric).
-        let factorized = if std::mem::take(&mut start_factorized) {
+    }
+
+    /// The unit predictor at the current point: the load tangent oriented along the previous
+    /// increment, or that increment (secant) when the tangent cannot be factorised.
+    fn predictor(&mut self, step: usize) -> Result<Predictor, PathStop> {
+        let linearization = &mut *self.linearization;
+        let current = &self.current;
+        let factorized = if std::mem::take(&mut self.start_factorized) {
             Ok(())
         } else {
             linearization.factorize(&current.displacement, current.load)
         };
-        // Negative pivots of the start's tangent, for the crossing guard.
         let start_pivots = factorized
             .as_ref()
             .ok()
-            .and_then(|()| linearization.factor.negative_pivots());
-        let tangent = match start_tangent.take() {
+            .and_then(|()| linearization.negative_pivots());
+        let tangent = match self.start_tangent.take() {
             Some(tangent) => Ok(tangent),
             None => factorized
                 .and_then(|()| linearization.load_tangent(&current.displacement, current.load)),
         };
-        let (mut direction, mut load_direction) = match (tangent, &previous) {
+        let load_scale = self.options.load_scale;
+        let (mut direction, mut load_direction) = match (tangent, &self.previous) {
             (Ok(mut displacement_tangent), _) => {
-                let sign = previous
+                let sign = self
+                    .previous
                     .as_ref()
                     .map_or(1.0, |(increment, load_increment)| {
                         orientation(
@@ -523,10 +538,7 @@ fn trace<M: EnergyModel>(
                      predictor)",
                     current.load
                 );
-                return (
-                    PathStop::Failed(SolveError::Linear { context, source }),
-                    current,
-                );
+                return Err(PathStop::Failed(SolveError::Linear { context, source }));
             }
         };
         let length = arc_dot(
@@ -542,118 +554,145 @@ fn trace<M: EnergyModel>(
                 "Newton–Riks step {step}: degenerate predictor (arc-length norm {length:.3e}); \
                  with load_scale = 0 the load must move the displacements"
             );
-            return (failed(current.load, message), current);
+            return Err(failed(current.load, message));
         }
         for value in direction.iter_mut() {
             *value /= length;
         }
         load_direction /= length;
+        Ok(Predictor {
+            direction,
+            load_direction,
+            start_pivots,
+        })
+    }
 
+    /// Corrects the step along `predictor` until its end is kept: a failed correction is
+    /// retried with half the arc length (the path fails below the minimum), an end that
+    /// changes the monitored dofs too much is redone shorter, one that jumped over a
+    /// bifurcation is redone with half the arc length.
+    fn converge(&mut self, step: usize, predictor: &Predictor) -> Result<AcceptedStep, PathStop> {
+        let corrector = self.options.corrector();
+        let min_arc_length = self.options.min_arc_length;
         let mut halvings = 0;
         let mut shrinks = 0;
-        // Largest change of the monitored dofs over the accepted step.
-        let mut amplitude_change = None;
-        let corrected = loop {
-            match correct(
-                linearization,
-                &current,
-                &direction,
-                load_direction,
-                arc_length,
-                options,
-            ) {
-                Ok(corrected) => {
-                    if let Some(control) = &options.amplitude {
-                        let change = largest_change(&control.dofs, &current, &corrected.state);
-                        let shorter =
-                            arc_length * (AMPLITUDE_TARGET * control.max_change / change).max(0.1);
-                        if change > control.max_change
-                            && shrinks < MAX_AMPLITUDE_SHRINKS
-                            && shorter >= options.min_arc_length
-                        {
-                            shrinks += 1;
-                            linearization.statistics.rejected_steps += 1;
-                            arc_length = shorter;
-                            continue;
-                        }
-                        amplitude_change = Some((change, control.max_change));
-                    }
-                    // The end's tangent is the next step's: factorising it here costs nothing
-                    // when the end is kept, and its inertia tells whether the step crossed a
-                    // critical point (see `MAX_CROSSING_HALVINGS`).
-                    let end = &corrected.state;
-                    let factorized = linearization.factorize(&end.displacement, end.load);
-                    let crossed = start_pivots == Some(0)
-                        && match (&factorized, linearization.factor.negative_pivots()) {
-                            (Err(_), _) => true,
-                            (Ok(()), Some(after)) => {
-                                after > 0
-                                    && load_keeps_its_direction(
-                                        linearization,
-                                        &current,
-                                        end,
-                                        load_direction,
-                                        load_scale,
-                                    )
-                            }
-                            (Ok(()), None) => false,
-                        };
-                    if crossed
-                        && halvings < MAX_CROSSING_HALVINGS
-                        && 0.5 * arc_length >= options.min_arc_length
-                    {
-                        halvings += 1;
-                        linearization.statistics.rejected_steps += 1;
-                        arc_length *= 0.5;
-                        continue;
-                    }
-                    start_factorized = factorized.is_ok();
-                    break corrected;
-                }
+        loop {
+            let attempt = correct(
+                self.linearization,
+                &self.current,
+                &predictor.direction,
+                predictor.load_direction,
+                self.arc_length,
+                &corrector,
+            );
+            let corrected = match attempt {
+                Ok(corrected) => corrected,
                 Err(failure) => {
-                    linearization.statistics.rejected_steps += 1;
-                    arc_length *= 0.5;
-                    if arc_length < options.min_arc_length {
+                    self.linearization.statistics.rejected_steps += 1;
+                    self.arc_length *= 0.5;
+                    if self.arc_length < min_arc_length {
                         let message = format!(
-                            "Newton–Riks step {step}: {}; arc length reduced to {arc_length:.3e}, \
-                             below the minimum {:.3e}",
-                            failure.describe(options.tolerance),
-                            options.min_arc_length
+                            "Newton–Riks step {step}: {}; arc length reduced to {:.3e}, \
+                             below the minimum {min_arc_length:.3e}",
+                            failure.describe(corrector.tolerance),
+                            self.arc_length,
                         );
-                        return (failed(current.load, message), current);
+                        return Err(failed(self.current.load, message));
                     }
+                    continue;
                 }
+            };
+            let amplitude_change = match self.amplitude_check(&corrected.state, &mut shrinks) {
+                AmplitudeVerdict::Redo => continue,
+                AmplitudeVerdict::Keep(change) => change,
+            };
+            // The end's tangent is the next step's: factorising it here costs nothing when
+            // the end is kept, and its inertia tells whether the step crossed a critical
+            // point (see `MAX_CROSSING_HALVINGS`).
+            let (crossed, end_factorized) = self.end_check(&corrected.state, predictor);
+            if crossed
+                && halvings < MAX_CROSSING_HALVINGS
+                && 0.5 * self.arc_length >= min_arc_length
+            {
+                halvings += 1;
+                self.linearization.statistics.rejected_steps += 1;
+                self.arc_length *= 0.5;
+                continue;
             }
-        };
+            self.start_factorized = end_factorized;
+            return Ok(AcceptedStep {
+                corrected,
+                amplitude_change,
+            });
+        }
+    }
 
-        previous = Some(increment(&current, &corrected.state));
-        current = corrected.state;
-        linearization.statistics.steps += 1;
+    /// The amplitude control of a converged end ([`RiksOptions::amplitude`]): redo the step
+    /// (the arc length is shortened), or keep it.
+    fn amplitude_check(&mut self, end: &PathState, shrinks: &mut usize) -> AmplitudeVerdict {
+        let Some(control) = &self.options.amplitude else {
+            return AmplitudeVerdict::Keep(None);
+        };
+        let change = largest_change(&control.dofs, &self.current, end);
+        let shorter = self.arc_length * (AMPLITUDE_TARGET * control.max_change / change).max(0.1);
+        if change > control.max_change
+            && *shrinks < MAX_AMPLITUDE_SHRINKS
+            && shorter >= self.options.min_arc_length
+        {
+            *shrinks += 1;
+            self.linearization.statistics.rejected_steps += 1;
+            self.arc_length = shorter;
+            return AmplitudeVerdict::Redo;
+        }
+        AmplitudeVerdict::Keep(Some((change, control.max_change)))
+    }
+
+    /// Factorises the tangent at a converged `end` and tells whether the step crossed a
+    /// bifurcation: negative pivots after a stable start, with the load still moving the way
+    /// of the predictor (a failed factorisation counts as a crossing). Returns that and
+    /// whether the factorisation succeeded.
+    fn end_check(&mut self, end: &PathState, predictor: &Predictor) -> (bool, bool) {
+        let linearization = &mut *self.linearization;
+        let factorized = linearization.factorize(&end.displacement, end.load);
+        let crossed = predictor.start_pivots == Some(0)
+            && match (&factorized, linearization.negative_pivots()) {
+                (Err(_), _) => true,
+                (Ok(()), Some(after)) => {
+                    after > 0
+                        && load_keeps_its_direction(
+                            linearization,
+                            &self.current,
+                            end,
+                            predictor.load_direction,
+                            self.options.load_scale,
+                        )
+                }
+                (Ok(()), None) => false,
+            };
+        (crossed, factorized.is_ok())
+    }
+
+    /// Moves to the accepted end and adapts the arc length:
+    /// $`\ell \leftarrow \ell\sqrt{n_\text{desired}/n_\text{used}}`$, capped by the amplitude
+    /// control, clamped to $`[\ell_\text{min}, \ell_\text{max}]`$.
+    fn accept(&mut self, accepted: AcceptedStep) {
+        let AcceptedStep {
+            corrected,
+            amplitude_change,
+        } = accepted;
+        self.previous = Some(increment(&self.current, &corrected.state));
+        self.current = corrected.state;
+        self.linearization.statistics.steps += 1;
+        let arc_length = self.arc_length;
         let factor =
-            (options.desired_iterations as f64 / corrected.iterations.max(1) as f64).sqrt();
+            (self.options.desired_iterations as f64 / corrected.iterations.max(1) as f64).sqrt();
         let mut next = arc_length * factor;
         if let Some((change, max_change)) = amplitude_change
             && change > 0.0
         {
             next = next.min(arc_length * AMPLITUDE_TARGET * max_change / change);
         }
-        arc_length = next.clamp(options.min_arc_length, options.max_arc_length);
-
-        let event = PathEvent {
-            step,
-            interior: false,
-            state: &current,
-            relative_residual: corrected.relative_residual,
-            predicted_bifurcation: None,
-        };
-        if observer(&event) == PathControl::Stop {
-            return (PathStop::Observer, current);
-        }
-        if let Some(max_load) = options.max_load
-            && current.load >= max_load
-        {
-            return (PathStop::MaxLoad, current);
-        }
+        self.arc_length = next.clamp(self.options.min_arc_length, self.options.max_arc_length);
     }
 }
 
@@ -682,288 +721,4 @@ fn largest_change(dofs: &[usize], from: &PathState, to: &PathState) -> f64 {
     dofs.iter()
         .map(|&i| (to.displacement[i] - from.displacement[i]).abs())
         .fold(0.0, f64::max)
-}
-
-/// The increment $`(\Delta U, \Delta\lambda)`$ from `from` to `to`.
-fn increment(from: &PathState, to: &PathState) -> (Vec<f64>, f64) {
-    let displacement = to
-        .displacement
-        .iter()
-        .zip(&from.displacement)
-        .map(|(new, old)| new - old)
-        .collect();
-    (displacement, to.load - from.load)
-}
-
-/// $`\pm 1`$: the sign that orients the path tangent $`(\delta U_F, 1)`$ along the increment
-/// $`(\Delta U, \Delta\lambda)`$ in the arc-length metric (+1 when they are orthogonal).
-fn orientation(increment: &[f64], load_increment: f64, tangent: &[f64], load_scale: f64) -> f64 {
-    if arc_dot(increment, load_increment, tangent, 1.0, load_scale) < 0.0 {
-        -1.0
-    } else {
-        1.0
-    }
-}
-
-/// One step attempt: predictor of length `arc_length` along the unit direction
-/// `(direction, load_direction)`, then full Newton on the bordered system.
-fn correct<M: EnergyModel>(
-    linearization: &mut Linearization<'_, M>,
-    origin: &PathState,
-    direction: &[f64],
-    load_direction: f64,
-    arc_length: f64,
-    options: &RiksOptions,
-) -> Result<Corrected, StepFailure> {
-    let load_scale = options.load_scale;
-    let weight = load_scale * load_scale;
-    let mut increment: Vec<f64> = direction.iter().map(|d| arc_length * d).collect();
-    let mut load_increment = arc_length * load_direction;
-    let mut displacement: Vec<f64> = origin
-        .displacement
-        .iter()
-        .zip(&increment)
-        .map(|(u, d)| u + d)
-        .collect();
-    let mut load = origin.load + load_increment;
-    let mut iterations = 0;
-    loop {
-        let (mut residual, relative) = linearization.residual(&displacement, load);
-        if !relative.is_finite() {
-            return Err(StepFailure::NonFinite {
-                location: format!("the residual at load {load:.6e}, iteration {iterations}"),
-            });
-        }
-        if relative <= options.tolerance {
-            return Ok(Corrected {
-                state: PathState { displacement, load },
-                iterations,
-                relative_residual: relative,
-            });
-        }
-        if iterations == options.max_iterations {
-            return Err(StepFailure::NoConvergence {
-                iterations,
-                residual: relative,
-            });
-        }
-        let singular = |source| StepFailure::Singular {
-            load,
-            iteration: iterations,
-            source,
-        };
-        linearization
-            .factorize(&displacement, load)
-            .map_err(singular)?;
-        for value in residual.iter_mut() {
-            *value = -*value;
-        }
-        linearization
-            .factor
-            .solve_in_place(&mut residual)
-            .map_err(singular)?;
-        let residual_correction = residual;
-        let load_correction_direction = linearization
-            .load_tangent(&displacement, load)
-            .map_err(singular)?;
-
-        let load_correction = match options.constraint {
-            ArcLengthConstraint::Linearized => {
-                let mismatch = arc_dot(
-                    &increment,
-                    load_increment,
-                    &increment,
-                    load_increment,
-                    load_scale,
-                ) - arc_length * arc_length;
-                let numerator = -0.5 * mismatch - dot(&increment, &residual_correction);
-                let denominator =
-                    dot(&increment, &load_correction_direction) + weight * load_increment;
-                let correction = numerator / denominator;
-                if !correction.is_finite() {
-                    return Err(StepFailure::Constraint {
-                        message: format!(
-                            "singular bordered system at load {load:.6e} (constraint row \
-                             {denominator:.3e} against the load tangent)"
-                        ),
-                    });
-                }
-                correction
-            }
-            ArcLengthConstraint::Spherical => {
-                let shifted: Vec<f64> = increment
-                    .iter()
-                    .zip(&residual_correction)
-                    .map(|(a, b)| a + b)
-                    .collect();
-                let a = dot(&load_correction_direction, &load_correction_direction) + weight;
-                let b = 2.0 * (dot(&shifted, &load_correction_direction) + weight * load_increment);
-                let c = dot(&shifted, &shifted) + weight * load_increment * load_increment
-                    - arc_length * arc_length;
-                spherical_root(
-                    a,
-                    b,
-                    c,
-                    &increment,
-                    load_increment,
-                    &shifted,
-                    &load_correction_direction,
-                    load_scale,
-                )
-                .map_err(|message| StepFailure::Constraint {
-                    message: format!("{message} at load {load:.6e}, iteration {iterations}"),
-                })?
-            }
-        };
-        for ((u, delta), (r, f)) in displacement
-            .iter_mut()
-            .zip(increment.iter_mut())
-            .zip(residual_correction.iter().zip(&load_correction_direction))
-        {
-            let change = r + load_correction * f;
-            *u += change;
-            *delta += change;
-        }
-        load += load_correction;
-        load_increment += load_correction;
-        iterations += 1;
-        linearization.statistics.corrections += 1;
-        if !load.is_finite() || displacement.iter().any(|u| !u.is_finite()) {
-            return Err(StepFailure::NonFinite {
-                location: format!("the corrector iterate {iterations}"),
-            });
-        }
-    }
-}
-
-/// Root $`\delta\lambda`$ of $`a\,\delta\lambda^2 + b\,\delta\lambda + c = 0`$ whose new
-/// increment $`(s + \delta\lambda f, \Delta\lambda + \delta\lambda)`$ makes the smallest angle
-/// with the current increment $`(\Delta U, \Delta\lambda)`$ (Crisfield's choice).
-#[allow(clippy::too_many_arguments)]
-fn spherical_root(
-    a: f64,
-    b: f64,
-    c: f64,
-    increment: &[f64],
-    load_increment: f64,
-    shifted: &[f64],
-    load_correction_direction: &[f64],
-    load_scale: f64,
-) -> Result<f64, String> {
-    let discriminant = b * b - 4.0 * a * c;
-    if !discriminant.is_finite() || !a.is_finite() {
-        return Err("non-finite coefficients of the spherical constraint".into());
-    }
-    if discriminant < 0.0 {
-        return Err(format!(
-            "the spherical arc-length constraint has no real root (discriminant {discriminant:.3e})"
-        ));
-    }
-    if a == 0.0 {
-        // Linear constraint (no load weight and no load tangent).
-        let root = -c / b;
-        return if root.is_finite() {
-            Ok(root)
-        } else {
-            Err("degenerate spherical arc-length constraint".into())
-        };
-    }
-    // Numerically stable pair of roots.
-    let q = -0.5 * (b + b.signum() * discriminant.sqrt());
-    let roots = if q == 0.0 { [0.0, 0.0] } else { [q / a, c / q] };
-    let alignment = |root: f64| {
-        let moved: f64 = increment
-            .iter()
-            .zip(shifted.iter().zip(load_correction_direction))
-            .map(|(d, (s, f))| d * (s + root * f))
-            .sum();
-        moved + load_scale * load_scale * load_increment * (load_increment + root)
-    };
-    let chosen = if alignment(roots[0]) >= alignment(roots[1]) {
-        roots[0]
-    } else {
-        roots[1]
-    };
-    if chosen.is_finite() {
-        Ok(chosen)
-    } else {
-        Err("degenerate spherical arc-length constraint".into())
-    }
-}
-
-/// Result of [`correct_on_arc`].
-#[derive(Clone, Debug)]
-pub struct ArcCorrection {
-    /// The corrected equilibrium point.
-    pub state: PathState,
-    /// Newton iterations (= tangent factorisations) used.
-    pub iterations: usize,
-    /// Relative residual reached.
-    pub relative_residual: f64,
-}
-
-/// Riks corrector for a predicted point, e.g. the end of an ANM step: Newton on the bordered
-/// system with the arc-length constraint (of radius $`\|(\Delta U, \psi\Delta\lambda)\|`$ about
-/// `origin`) passing through `predicted`. Unlike Newton at fixed load it converges through limit
-/// points. `options` supplies the tolerance, iteration cap, load scale $`\psi`$ and constraint;
-/// the work done is added to `statistics`.
-pub fn correct_on_arc<M: EnergyModel>(
-    problem: &Problem<M>,
-    factor: &mut SparseFactorization,
-    origin: &PathState,
-    predicted: &PathState,
-    options: &RiksOptions,
-    statistics: &mut PathStatistics,
-) -> Result<ArcCorrection, SolveError> {
-    let (increment, load_increment) = increment(origin, predicted);
-    let arc_length = arc_dot(
-        &increment,
-        load_increment,
-        &increment,
-        load_increment,
-        options.load_scale,
-    )
-    .sqrt();
-    if !(arc_length > 0.0 && arc_length.is_finite()) {
-        return Err(SolveError::Path {
-            load: origin.load,
-            message: format!("arc-length correction: degenerate increment (length {arc_length:e})"),
-        });
-    }
-    let direction: Vec<f64> = increment.iter().map(|d| d / arc_length).collect();
-    let mut linearization = Linearization {
-        problem,
-        factor,
-        matrix: problem.new_matrix(),
-        statistics: PathStatistics::default(),
-    };
-    let result = correct(
-        &mut linearization,
-        origin,
-        &direction,
-        load_increment / arc_length,
-        arc_length,
-        options,
-    );
-    let work = &linearization.statistics;
-    statistics.factorizations += work.factorizations;
-    statistics.tangent_assemblies += work.tangent_assemblies;
-    statistics.residual_assemblies += work.residual_assemblies;
-    statistics.residual_seconds += work.residual_seconds;
-    statistics.assembly_seconds += work.assembly_seconds;
-    statistics.factorization_seconds += work.factorization_seconds;
-    match result {
-        Ok(c) => Ok(ArcCorrection {
-            state: c.state,
-            iterations: c.iterations,
-            relative_residual: c.relative_residual,
-        }),
-        Err(failure) => Err(SolveError::Path {
-            load: predicted.load,
-            message: format!(
-                "arc-length correction: {}",
-                failure.describe(options.tolerance)
-            ),
-        }),
-    }
 }

@@ -1,0 +1,160 @@
+//! Landing a path on its target: the point where a measure of the path (an amplitude the
+//! application defines, or the load) reaches a given value, instead of the first computed point
+//! past it.
+//!
+//! * [`land`]: equilibrium points on spheres about the last point below the target
+//!   ([`correct_on_arc`]) through the chord between the two points that bracket it, the
+//!   bracket narrowed by regula falsi (Illinois) until the measure lies within the target's
+//!   window ([`LandingTarget`]). Any path method's last two points will do: Riks' step ends,
+//!   the ANM's dense output.
+//! * [`parameter_at_load`]: the ANM's landing on `max_load` inside a step, where the series
+//!   is evaluated at any path parameter: bisection for $`\lambda(a) = \lambda_\text{max}`$.
+
+use super::arc_length::{ArcCorrection, ArcCorrectorOptions, correct_on_arc};
+use super::linearization::Linearization;
+use super::path::PathState;
+use crate::model::EnergyModel;
+
+/// Relative distance above an amplitude target within which a point is taken as landed on it.
+pub const AMPLITUDE_LANDING_TOLERANCE: f64 = 1e-3;
+
+/// The same for a load target (`max_load`), which the ANM meets exactly.
+pub const LOAD_LANDING_TOLERANCE: f64 = 1e-9;
+
+/// Arc-length corrections tried to land on a target.
+pub const MAX_LANDING_CORRECTIONS: usize = 8;
+
+/// Bisection steps of [`parameter_at_load`].
+const LOAD_BISECTION_STEPS: usize = 60;
+
+/// What a path's last point is moved back onto.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LandingTarget {
+    /// An amplitude, in the application's measure (e.g. $`\max|w|/h`$).
+    Amplitude(f64),
+    /// A load parameter value (Riks stopped by `max_load`).
+    Load(f64),
+}
+
+impl LandingTarget {
+    /// The target value.
+    pub fn value(self) -> f64 {
+        match self {
+            LandingTarget::Amplitude(value) | LandingTarget::Load(value) => value,
+        }
+    }
+
+    /// The relative width of the accepted window $`[t, t(1 + \text{tolerance})]`$ above the
+    /// target $`t`$: [`AMPLITUDE_LANDING_TOLERANCE`] or [`LOAD_LANDING_TOLERANCE`].
+    pub fn tolerance(self) -> f64 {
+        match self {
+            LandingTarget::Amplitude(_) => AMPLITUDE_LANDING_TOLERANCE,
+            LandingTarget::Load(_) => LOAD_LANDING_TOLERANCE,
+        }
+    }
+}
+
+/// Moves a path's last point `above`, which overshot `target` in `measure`, back onto it: the
+/// landed equilibrium point, or `None` when `below` (the point before) is not below the
+/// target, `above` is within the window already, or no correction lands within
+/// [`MAX_LANDING_CORRECTIONS`].
+///
+/// Each correction takes the point of the chord between the bracketing points where the
+/// measure, interpolated linearly, meets the middle of the window, and corrects it onto the
+/// path on the sphere about `below` through it ([`correct_on_arc`] with `corrector`); the
+/// corrected point replaces the bracket's end on its side, and an end kept twice has its value
+/// halved (Illinois). The work is counted in `linearization`.
+pub fn land<M: EnergyModel>(
+    linearization: &mut Linearization<'_, M>,
+    below: &PathState,
+    above: &PathState,
+    target: LandingTarget,
+    measure: &dyn Fn(&PathState) -> f64,
+    corrector: &ArcCorrectorOptions,
+) -> Option<ArcCorrection> {
+    let value = target.value();
+    let window = target.tolerance() * value.abs();
+    let overshoot = measure(above);
+    let undershoot = measure(below);
+    if !(overshoot > value + window && undershoot < value) {
+        return None;
+    }
+    // Aim at the middle of the accepted window [target, target + window].
+    let aim = value + 0.5 * window;
+    let mut bracket = Bracket {
+        low: (undershoot - aim, below.clone()),
+        high: (overshoot - aim, above.clone()),
+        side: 0,
+    };
+    for _ in 0..MAX_LANDING_CORRECTIONS {
+        let predicted = bracket.chord_point();
+        let corrected = correct_on_arc(linearization, below, &predicted, corrector).ok()?;
+        let miss = measure(&corrected.state) - aim;
+        if miss.abs() <= 0.5 * window {
+            return Some(corrected);
+        }
+        bracket.narrow(miss, corrected.state);
+    }
+    None
+}
+
+/// Two points about the aim, each with its measure minus the aim (negative below, positive
+/// above).
+struct Bracket {
+    low: (f64, PathState),
+    high: (f64, PathState),
+    /// The side replaced last: -1 low, +1 high, 0 none yet.
+    side: i8,
+}
+
+impl Bracket {
+    /// The point of the chord where the linear interpolation of the measure meets the aim.
+    fn chord_point(&self) -> PathState {
+        let (low, high) = (&self.low, &self.high);
+        let fraction = low.0 / (low.0 - high.0);
+        PathState {
+            displacement: low
+                .1
+                .displacement
+                .iter()
+                .zip(&high.1.displacement)
+                .map(|(a, b)| a + fraction * (b - a))
+                .collect(),
+            load: low.1.load + fraction * (high.1.load - low.1.load),
+        }
+    }
+
+    /// Replaces the end on the side of `miss` by `state`; halves the other end's value when
+    /// the same side is replaced twice in a row (Illinois).
+    fn narrow(&mut self, miss: f64, state: PathState) {
+        if miss > 0.0 {
+            self.high = (miss, state);
+            if self.side == 1 {
+                self.low.0 *= 0.5;
+            }
+            self.side = 1;
+        } else {
+            self.low = (miss, state);
+            if self.side == -1 {
+                self.high.0 *= 0.5;
+            }
+            self.side = -1;
+        }
+    }
+}
+
+/// The path parameter in $`(0, a]`$ where `load_at` reaches `max_load`, by bisection from
+/// $`[0, a]`$ with `load_at(a)` $`\ge`$ `max_load` (the upper end of the last bracket, so that
+/// the load there is at least `max_load`).
+pub fn parameter_at_load(load_at: impl Fn(f64) -> f64, a: f64, max_load: f64) -> f64 {
+    let (mut low, mut high) = (0.0, a);
+    for _ in 0..LOAD_BISECTION_STEPS {
+        let middle = 0.5 * (low + high);
+        if load_at(middle) < max_load {
+            low = middle
+        } else {
+            high = middle
+        }
+    }
+    high
+}

@@ -1,0 +1,199 @@
+//! One linearisation of $`R(U, \lambda) = 0`$ at a point: the tangent
+//! $`K_t = \partial R/\partial U`$ assembled and factorised, the work counted, and the load
+//! tangent $`\delta U_F = -K_t^{-1}\,\partial R/\partial\lambda`$ solved with the factor.
+//!
+//! * [`factorize_tangent`] and [`load_tangent`]: the two operations on their own, uncounted —
+//!   what Newton ([`newton`](super::newton)) and linear buckling
+//!   ([`buckling`](super::buckling)) need, and the ANM's order 1.
+//! * [`Linearization`]: the same operations for the path solvers (the ANM, Riks, the
+//!   arc-length corrector and the landing), which count every tangent assembly,
+//!   factorisation and residual evaluation, with their times, in a [`PathStatistics`].
+//! * [`SpareTangent`]: a second tangent and factorisation on the same pattern (the ANM's check
+//!   of a step's end), which [`Linearization::adopt`] makes the current one.
+
+use std::time::Instant;
+
+use super::path::PathStatistics;
+use crate::linear::factor::{FactorizationKind, LinearError, SparseFactorization};
+use crate::linear::pattern::SparseMatrix;
+use crate::model::EnergyModel;
+use crate::problem::Problem;
+
+/// Assembles $`K_t(U, \lambda)`$ into `matrix` and factorises it into `factor` (uncounted).
+pub fn factorize_tangent<M: EnergyModel>(
+    problem: &Problem<M>,
+    displacement: &[f64],
+    load: f64,
+    matrix: &mut SparseMatrix,
+    factor: &mut SparseFactorization,
+) -> Result<FactorizationKind, LinearError> {
+    problem.tangent_into(displacement, load, matrix);
+    factor.factorize(matrix)
+}
+
+/// The load tangent $`\delta U_F = -K_t^{-1}\,\partial R/\partial\lambda`$ at $`(U, \lambda)`$
+/// with `factor` holding $`K_t`$ there (uncounted): the linear response to a unit load
+/// increment, the first-order term of the ANM, the load rate of linear buckling and the
+/// predictor of Riks. $`\partial R/\partial\lambda`$ comes from one dual-number residual
+/// ([`Problem::load_derivative`]).
+pub fn load_tangent<M: EnergyModel>(
+    problem: &Problem<M>,
+    factor: &SparseFactorization,
+    displacement: &[f64],
+    load: f64,
+) -> Result<Vec<f64>, LinearError> {
+    let mut tangent = problem.load_derivative(displacement, load);
+    for value in tangent.iter_mut() {
+        *value = -*value;
+    }
+    factor.solve_in_place(&mut tangent)?;
+    Ok(tangent)
+}
+
+/// The tangent of a path solver: its matrix, the factorisation it refactorises (analysed once
+/// for the problem's pattern), and the work counters of the path.
+pub struct Linearization<'a, M: EnergyModel> {
+    problem: &'a Problem<M>,
+    factor: &'a mut SparseFactorization,
+    matrix: SparseMatrix,
+    /// Work done through this linearisation (and whatever else the path solver counts in it).
+    pub statistics: PathStatistics,
+}
+
+impl<'a, M: EnergyModel> Linearization<'a, M> {
+    /// A linearisation of `problem` refactorising `factor`, which must have been analysed for
+    /// the problem's tangent pattern; zero counters.
+    pub fn new(problem: &'a Problem<M>, factor: &'a mut SparseFactorization) -> Self {
+        Linearization {
+            problem,
+            factor,
+            matrix: problem.new_matrix(),
+            statistics: PathStatistics::default(),
+        }
+    }
+
+    /// The problem linearised.
+    pub fn problem(&self) -> &'a Problem<M> {
+        self.problem
+    }
+
+    /// The factorisation of the last tangent factorised.
+    pub fn factor(&self) -> &SparseFactorization {
+        self.factor
+    }
+
+    /// The last tangent assembled.
+    pub fn tangent(&self) -> &SparseMatrix {
+        &self.matrix
+    }
+
+    /// Negative pivots of the last factorisation (`None` without inertia: after LU).
+    pub fn negative_pivots(&self) -> Option<usize> {
+        self.factor.negative_pivots()
+    }
+
+    /// Assembles and factorises $`K_t(U, \lambda)`$: one tangent assembly and one
+    /// factorisation counted (a failed factorisation too: its work was done), with their times.
+    pub fn factorize(&mut self, displacement: &[f64], load: f64) -> Result<(), LinearError> {
+        let clock = Instant::now();
+        self.problem
+            .tangent_into(displacement, load, &mut self.matrix);
+        self.statistics.tangent_assemblies += 1;
+        self.statistics.assembly_seconds += clock.elapsed().as_secs_f64();
+        let clock = Instant::now();
+        let result = self.factor.factorize(&self.matrix);
+        self.statistics.factorizations += 1;
+        self.statistics.factorization_seconds += clock.elapsed().as_secs_f64();
+        result.map(|_| ())
+    }
+
+    /// Solves $`K_t x = b`$ in place with the current factorisation.
+    pub fn solve_in_place(&self, rhs: &mut [f64]) -> Result<(), LinearError> {
+        self.factor.solve_in_place(rhs)
+    }
+
+    /// [`load_tangent`] with the current factorisation; the dual-number
+    /// $`\partial R/\partial\lambda`$ counts as one residual assembly.
+    pub fn load_tangent(
+        &mut self,
+        displacement: &[f64],
+        load: f64,
+    ) -> Result<Vec<f64>, LinearError> {
+        self.statistics.residual_assemblies += 1;
+        load_tangent(self.problem, self.factor, displacement, load)
+    }
+
+    /// $`(R, \|R\|/\text{scale})`$ at a point ([`Problem::residual_with_relative`]), counted
+    /// and timed.
+    pub fn residual(&mut self, displacement: &[f64], load: f64) -> (Vec<f64>, f64) {
+        let problem = self.problem;
+        self.statistics
+            .time_residual(|| problem.residual_with_relative(displacement, load))
+    }
+
+    /// The field-balanced relative residual at a point ([`Problem::relative_residual`]),
+    /// counted and timed.
+    pub fn relative_residual(&mut self, displacement: &[f64], load: f64) -> f64 {
+        let problem = self.problem;
+        self.statistics
+            .time_residual(|| problem.relative_residual(displacement, load))
+    }
+
+    /// Runs `work` on a linearisation that shares this one's problem and factorisation (with a
+    /// matrix and counters of its own), then adds its linear-algebra work to these counters
+    /// ([`PathStatistics::add_linear_work`]): e.g. an arc-length correction inside an ANM step,
+    /// whose Newton iterations are not the path's corrections.
+    pub fn nested<T>(&mut self, work: impl FnOnce(&mut Linearization<'_, M>) -> T) -> T {
+        let mut nested = Linearization::new(self.problem, &mut *self.factor);
+        let result = work(&mut nested);
+        self.statistics.add_linear_work(&nested.statistics);
+        result
+    }
+
+    /// A second tangent and factorisation on this problem's pattern.
+    pub fn spare(&self) -> Result<SpareTangent, LinearError> {
+        Ok(SpareTangent {
+            matrix: self.problem.new_matrix(),
+            factor: SparseFactorization::analyze(self.problem.assembler.pattern())?,
+        })
+    }
+
+    /// [`Self::factorize`] into `spare`, leaving the current tangent and factorisation as they
+    /// are; counted the same way.
+    pub fn factorize_spare(
+        &mut self,
+        spare: &mut SpareTangent,
+        displacement: &[f64],
+        load: f64,
+    ) -> Result<(), LinearError> {
+        self.swap(spare);
+        let result = self.factorize(displacement, load);
+        self.swap(spare);
+        result
+    }
+
+    /// Makes the tangent and factorisation in `spare` the current ones (and the current ones
+    /// the spare).
+    pub fn adopt(&mut self, spare: &mut SpareTangent) {
+        self.swap(spare);
+    }
+
+    fn swap(&mut self, spare: &mut SpareTangent) {
+        std::mem::swap(&mut self.matrix, &mut spare.matrix);
+        std::mem::swap(self.factor, &mut spare.factor);
+    }
+}
+
+/// A tangent and its factorisation kept beside a [`Linearization`]'s
+/// ([`Linearization::spare`]).
+pub struct SpareTangent {
+    matrix: SparseMatrix,
+    factor: SparseFactorization,
+}
+
+impl SpareTangent {
+    /// Negative pivots of its factorisation (`None` without inertia: after LU).
+    pub fn negative_pivots(&self) -> Option<usize> {
+        self.factor.negative_pivots()
+    }
+}
