@@ -440,6 +440,53 @@ pub fn smallest_positive_buckling(
         applications: 0,
     };
     let mut random = SplitMix64(options.seed);
+    let mut basis = start_basis(&mut operator, &mut random, options)?;
+    check_factorization(&operator, &basis)?;
+    let mut history: Vec<f64> = Vec::new();
+    let mut restarts = 0;
+    loop {
+        let full = grow_to_next_check(
+            &mut basis,
+            &mut operator,
+            &mut random,
+            options.modes,
+            krylov_dimension,
+        )?;
+        let ritz = rayleigh_ritz(&basis, n, options.modes);
+        let progress = Progress {
+            full,
+            exhausted: basis.len() >= n,
+            restarts,
+            applications: operator.applications,
+        };
+        match verdict(&ritz, &mut history, &progress, options) {
+            Verdict::Expand => continue,
+            Verdict::Restart => {}
+            Verdict::Solved { wanted, converged } => {
+                return solution(&basis, &wanted, &operator, n, converged);
+            }
+            Verdict::Failed(error) => return Err(error),
+        }
+        restarts += 1;
+        basis = thick_restart(
+            &basis,
+            &ritz,
+            options.modes,
+            krylov_dimension,
+            &mut operator,
+            &mut random,
+        )?;
+    }
+}
+
+/// The first basis vector: the warm start of `options` with a small pseudo-random admixture
+/// when it fits, else a pseudo-random vector.
+fn start_basis(
+    operator: &mut Operator<'_>,
+    random: &mut SplitMix64,
+    options: &BucklingOptions,
+) -> Result<Basis, LinearError> {
+    let n = operator.a.dimension();
     let mut basis = Basis::from_columns(Vec::new(), Vec::new(), Vec::new(), Vec::new());
     let warm = match &options.start {
         Some(start) if start.len() == n && start.iter().all(|v| v.is_finite()) => {
@@ -452,147 +499,221 @@ pub fn smallest_positive_buckling(
                 *value += scale * random.next_unit();
             }
             let reference = dot(&start, &operator.apply_a(&start)?).abs().sqrt();
-            basis.try_push(start, reference, &mut operator)?
+            basis.try_push(start, reference, operator)?
         }
         _ => false,
     };
-    if !warm && !basis.expand(&mut operator, &mut random)? {
+    if !warm && !basis.expand(operator, random)? {
         return Err(LinearError::NoPositiveLoadFactor {
             most_negative_ritz_value: 0.0,
         });
     }
-    // Check that the factorisation belongs to A: A (A⁻¹ B v) = B v.
-    {
-        let check = operator.apply_a(&basis.c_vectors[0])?;
-        let mismatch: f64 = check
-            .iter()
-            .zip(&basis.b_vectors[0])
-            .map(|(x, y)| (x - y) * (x - y))
-            .sum::<f64>()
-            .sqrt();
-        let scale = norm(&basis.b_vectors[0]);
-        if mismatch > 1e-6 * scale {
-            return Err(LinearError::InvalidOption {
-                what: format!(
-                    "a_factor is not a factorisation of A (‖A A⁻¹ B v − B v‖ / ‖B v‖ = {:e})",
-                    mismatch / scale
-                ),
-            });
-        }
+    Ok(basis)
+}
+
+/// Checks that the factorisation belongs to $`A`$: $`A (A^{-1} B v) = B v`$ for the first
+/// basis vector.
+fn check_factorization(operator: &Operator<'_>, basis: &Basis) -> Result<(), LinearError> {
+    let check = operator.apply_a(&basis.c_vectors[0])?;
+    let mismatch: f64 = check
+        .iter()
+        .zip(&basis.b_vectors[0])
+        .map(|(x, y)| (x - y) * (x - y))
+        .sum::<f64>()
+        .sqrt();
+    let scale = norm(&basis.b_vectors[0]);
+    if mismatch > 1e-6 * scale {
+        return Err(LinearError::InvalidOption {
+            what: format!(
+                "a_factor is not a factorisation of A (‖A A⁻¹ B v − B v‖ / ‖B v‖ = {:e})",
+                mismatch / scale
+            ),
+        });
     }
-    let mut history: Vec<f64> = Vec::new();
-    let mut restarts = 0;
-    loop {
-        // Expand to the next check: every other vector once the basis holds a few more vectors
-        // than modes wanted (a warm-started analysis often converges long before the basis is
-        // full), and at the full dimension.
-        let first_check = (options.modes + EARLY_CHECK_MARGIN).min(krylov_dimension);
-        let target = if basis.len() < first_check {
-            first_check
-        } else {
-            (basis.len() + EARLY_CHECK_STRIDE).min(krylov_dimension)
-        };
-        let mut grew = false;
-        while basis.len() < target {
-            if !basis.expand(&mut operator, &mut random)? {
-                break;
-            }
-            grew = true;
+    Ok(())
+}
+
+/// Expands the basis to the next check: every other vector once it holds a few more vectors
+/// than modes wanted (a warm-started analysis often converges long before the basis is full),
+/// and at the full dimension. Returns whether the basis is full (or could not grow).
+fn grow_to_next_check(
+    basis: &mut Basis,
+    operator: &mut Operator<'_>,
+    random: &mut SplitMix64,
+    modes: usize,
+    krylov_dimension: usize,
+) -> Result<bool, LinearError> {
+    let first_check = (modes + EARLY_CHECK_MARGIN).min(krylov_dimension);
+    let target = if basis.len() < first_check {
+        first_check
+    } else {
+        (basis.len() + EARLY_CHECK_STRIDE).min(krylov_dimension)
+    };
+    let mut grew = false;
+    while basis.len() < target {
+        if !basis.expand(operator, random)? {
+            break;
         }
-        let full = basis.len() >= krylov_dimension || !grew;
-        let ritz = rayleigh_ritz(&basis, n, options.modes);
-        let spectral_scale = ritz
-            .iter()
-            .fold(0.0_f64, |max, pair| max.max(pair.value.abs()));
-        let noise = NEGATIVE_NOISE_RELATIVE * spectral_scale;
-        let wanted: Vec<&RitzPair> = ritz
-            .iter()
-            .take(options.modes)
-            .take_while(|pair| pair.value < -noise)
-            .collect();
-        let exhausted = basis.len() >= n;
-        if wanted.is_empty() {
-            // No negative Ritz value yet. A small negative end of the spectrum can hide behind a
-            // large positive one (a strip in tension: the compressed zone is small), so the
-            // iteration goes on, restarted on the leftmost Ritz vectors, until the leftmost
-            // Ritz pair itself has converged (then there is no positive load factor) or the
-            // restart budget is spent.
-            let leftmost = ritz.first();
-            let settled = leftmost
-                .is_none_or(|pair| pair.relative_residual <= options.tolerance.sqrt())
-                || exhausted
-                || restarts >= options.max_restarts;
-            if !full && !exhausted {
-                continue;
-            }
-            if settled {
-                return Err(LinearError::NoPositiveLoadFactor {
-                    most_negative_ritz_value: leftmost.map_or(0.0, |pair| pair.value),
-                });
-            }
-        } else {
-            let worst = wanted
-                .iter()
-                .fold(0.0_f64, |max, pair| max.max(pair.relative_residual));
-            let all_found = wanted.len() == options.modes;
-            if !full && !exhausted {
-                if all_found && worst <= options.tolerance {
-                    return solution(&basis, &wanted, &operator, n, true);
-                }
-                continue;
-            }
-            history.push(worst);
-            // Rounding limits the attainable residual (about ε κ(A) for smooth modes of stiff
-            // operators): a residual that no longer halves is accepted below √tolerance (the load
-            // factor error being of the order of its square), and ends the iteration otherwise.
-            let improving_over = |window: usize| {
-                history.len() <= window || worst <= 0.5 * history[history.len() - 1 - window]
-            };
-            let stagnated = !improving_over(STAGNATION_WINDOW);
-            let converged = worst <= options.tolerance
-                || exhausted
-                || (stagnated && worst <= options.tolerance.sqrt());
-            let hopeless = !improving_over(HOPELESS_WINDOW);
-            if converged || hopeless || restarts >= options.max_restarts {
-                if !converged && !options.accept_unconverged {
-                    return Err(LinearError::NotConverged {
-                        restarts,
-                        iterations: operator.applications,
-                        residual: worst,
-                        tolerance: options.tolerance,
-                    });
-                }
-                return solution(&basis, &wanted, &operator, n, converged);
-            }
-        }
-        // Thick restart: keep the most negative Ritz vectors and the common residual direction.
-        restarts += 1;
-        let keep = (options.modes + (krylov_dimension - options.modes) / 2)
-            .min(krylov_dimension.saturating_sub(2))
-            .max(options.modes)
-            .min(ritz.len());
-        let last_c = basis.c_vectors.last().cloned().unwrap_or_default();
-        let last_b = basis.b_vectors.last().cloned().unwrap_or_default();
-        let mut continuation = last_c.clone();
-        basis.orthogonalize(&mut continuation);
-        let transform = |vectors: &[Vec<f64>]| -> Vec<Vec<f64>> {
-            ritz[..keep]
-                .iter()
-                .map(|pair| combine(vectors, pair.coefficients.iter().copied(), n))
-                .collect()
-        };
-        let restarted = Basis::from_columns(
-            transform(&basis.vectors),
-            transform(&basis.a_vectors),
-            transform(&basis.b_vectors),
-            transform(&basis.c_vectors),
-        );
-        basis = restarted;
-        let reference = dot(&last_c, &last_b).abs().sqrt();
-        if !basis.try_push(continuation, reference, &mut operator)? {
-            basis.expand(&mut operator, &mut random)?;
-        }
+        grew = true;
     }
+    Ok(basis.len() >= krylov_dimension || !grew)
+}
+
+/// Where the iteration stands at a check.
+struct Progress {
+    /// The basis is full (or could not grow).
+    full: bool,
+    /// The basis spans the whole space.
+    exhausted: bool,
+    restarts: usize,
+    /// Operator applications so far.
+    applications: usize,
+}
+
+/// What a check decides.
+enum Verdict<'r> {
+    /// Grow the basis further before the next check.
+    Expand,
+    /// Restart thickly.
+    Restart,
+    /// Return these pairs' modes.
+    Solved {
+        wanted: Vec<&'r RitzPair>,
+        converged: bool,
+    },
+    /// Give up.
+    Failed(LinearError),
+}
+
+/// The decision at a check from the Ritz pairs (ascending), the history of the worst wanted
+/// residual at full checks (extended here) and the iteration's progress.
+fn verdict<'r>(
+    ritz: &'r [RitzPair],
+    history: &mut Vec<f64>,
+    progress: &Progress,
+    options: &BucklingOptions,
+) -> Verdict<'r> {
+    let spectral_scale = ritz
+        .iter()
+        .fold(0.0_f64, |max, pair| max.max(pair.value.abs()));
+    let noise = NEGATIVE_NOISE_RELATIVE * spectral_scale;
+    let wanted: Vec<&RitzPair> = ritz
+        .iter()
+        .take(options.modes)
+        .take_while(|pair| pair.value < -noise)
+        .collect();
+    let growing = !progress.full && !progress.exhausted;
+    if wanted.is_empty() {
+        // No negative Ritz value yet. A small negative end of the spectrum can hide behind a
+        // large positive one (a strip in tension: the compressed zone is small), so the
+        // iteration goes on, restarted on the leftmost Ritz vectors, until the leftmost
+        // Ritz pair itself has converged (then there is no positive load factor) or the
+        // restart budget is spent.
+        let leftmost = ritz.first();
+        let settled = leftmost
+            .is_none_or(|pair| pair.relative_residual <= options.tolerance.sqrt())
+            || progress.exhausted
+            || progress.restarts >= options.max_restarts;
+        return if growing {
+            Verdict::Expand
+        } else if settled {
+            Verdict::Failed(LinearError::NoPositiveLoadFactor {
+                most_negative_ritz_value: leftmost.map_or(0.0, |pair| pair.value),
+            })
+        } else {
+            Verdict::Restart
+        };
+    }
+    let worst = wanted
+        .iter()
+        .fold(0.0_f64, |max, pair| max.max(pair.relative_residual));
+    if growing {
+        let all_found = wanted.len() == options.modes;
+        return if all_found && worst <= options.tolerance {
+            Verdict::Solved {
+                wanted,
+                converged: true,
+            }
+        } else {
+            Verdict::Expand
+        };
+    }
+    history.push(worst);
+    full_check_verdict(wanted, worst, history, progress, options)
+}
+
+/// [`verdict`] at a full basis with wanted pairs, `worst` their largest residual (the last
+/// entry of `history`).
+///
+/// Rounding limits the attainable residual (about $`\epsilon\,\kappa(A)`$ for smooth modes of
+/// stiff operators): a residual that no longer halves is accepted below
+/// $`\sqrt{\text{tolerance}}`$ (the load factor error being of the order of its square), and
+/// ends the iteration otherwise.
+fn full_check_verdict<'r>(
+    wanted: Vec<&'r RitzPair>,
+    worst: f64,
+    history: &[f64],
+    progress: &Progress,
+    options: &BucklingOptions,
+) -> Verdict<'r> {
+    let improving_over = |window: usize| {
+        history.len() <= window || worst <= 0.5 * history[history.len() - 1 - window]
+    };
+    let stagnated = !improving_over(STAGNATION_WINDOW);
+    let converged = worst <= options.tolerance
+        || progress.exhausted
+        || (stagnated && worst <= options.tolerance.sqrt());
+    let hopeless = !improving_over(HOPELESS_WINDOW);
+    if !(converged || hopeless || progress.restarts >= options.max_restarts) {
+        return Verdict::Restart;
+    }
+    if !converged && !options.accept_unconverged {
+        return Verdict::Failed(LinearError::NotConverged {
+            restarts: progress.restarts,
+            iterations: progress.applications,
+            residual: worst,
+            tolerance: options.tolerance,
+        });
+    }
+    Verdict::Solved { wanted, converged }
+}
+
+/// Thick restart: a basis of the most negative Ritz vectors and the common residual direction
+/// (or, when that lies in their span, a new direction).
+fn thick_restart(
+    basis: &Basis,
+    ritz: &[RitzPair],
+    modes: usize,
+    krylov_dimension: usize,
+    operator: &mut Operator<'_>,
+    random: &mut SplitMix64,
+) -> Result<Basis, LinearError> {
+    let n = operator.a.dimension();
+    let keep = (modes + (krylov_dimension - modes) / 2)
+        .min(krylov_dimension.saturating_sub(2))
+        .max(modes)
+        .min(ritz.len());
+    let last_c = basis.c_vectors.last().cloned().unwrap_or_default();
+    let last_b = basis.b_vectors.last().cloned().unwrap_or_default();
+    let mut continuation = last_c.clone();
+    basis.orthogonalize(&mut continuation);
+    let transform = |vectors: &[Vec<f64>]| -> Vec<Vec<f64>> {
+        ritz[..keep]
+            .iter()
+            .map(|pair| combine(vectors, pair.coefficients.iter().copied(), n))
+            .collect()
+    };
+    let mut restarted = Basis::from_columns(
+        transform(&basis.vectors),
+        transform(&basis.a_vectors),
+        transform(&basis.b_vectors),
+        transform(&basis.c_vectors),
+    );
+    let reference = dot(&last_c, &last_b).abs().sqrt();
+    if !restarted.try_push(continuation, reference, operator)? {
+        restarted.expand(operator, random)?;
+    }
+    Ok(restarted)
 }
 
 /// The returned solution: the modes of the `wanted` Ritz pairs, by ascending load factor.
