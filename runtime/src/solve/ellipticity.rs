@@ -323,14 +323,21 @@ pub fn legendre_hadamard<M: EnergyModel>(
 ) -> EllipticityReport {
     let spec = M::SPEC;
     let nf = spec.fields.len();
-    let assembler = &problem.assembler;
-    let mesh = assembler.mesh();
-    let global = assembler.dofs().expand(free, load);
-    let rule = GaussRule::square(3);
     let gradient_fields: Vec<usize> = (0..nf).filter(|&f| spec.needs_gradient(f)).collect();
     let gradient_free = gradient_free_fields(spec);
-    let m = gradient_fields.len();
-    let mut report = EllipticityReport {
+    let mut report = unviolated_report(spec, &gradient_free);
+    if gradient_fields.is_empty() && gradient_free.is_empty() {
+        return report;
+    }
+    let checks = point_checks(problem, free, load, &gradient_fields, &gradient_free);
+    fold_checks(&mut report, &checks, spec, &gradient_fields);
+    report
+}
+
+/// The report of a state without violation (margins $`+\infty`$), for the fields
+/// `gradient_free`.
+fn unviolated_report(spec: &ModelSpec, gradient_free: &[usize]) -> EllipticityReport {
+    EllipticityReport {
         elliptic: true,
         worst_margin: f64::INFINITY,
         location: [0.0, 0.0],
@@ -347,22 +354,33 @@ pub fn legendre_hadamard<M: EnergyModel>(
                 violated_fraction: 0.0,
             })
             .collect(),
-    };
-    if m == 0 && gradient_free.is_empty() {
-        return report;
     }
+}
+
+/// The checks of every 3×3 Gauss point, element by element (elements whose geometry fails
+/// give none). They run in parallel over elements and come back in element order, so the
+/// report does not depend on the thread count.
+fn point_checks<M: EnergyModel>(
+    problem: &Problem<M>,
+    free: &[f64],
+    load: f64,
+    gradient_fields: &[usize],
+    gradient_free: &[usize],
+) -> Vec<Vec<PointCheck>> {
+    let spec = M::SPEC;
+    let nf = spec.fields.len();
+    let m = gradient_fields.len();
+    let assembler = &problem.assembler;
+    let mesh = assembler.mesh();
+    let global = assembler.dofs().expand(free, load);
+    let rule = GaussRule::square(3);
     let directions = direction_table();
-    let mut total_area = 0.0;
-    let mut violated_area = 0.0;
-    let mut field_violated_area = vec![0.0; gradient_free.len()];
     let hessians: Vec<Vec<f64>> = spec
         .terms
         .iter()
         .map(|t| vec![0.0; t.tangent_pattern.len()])
         .collect();
-    // The pointwise checks run in parallel over elements; they are folded below in element
-    // order, so the report does not depend on the thread count.
-    let checks: Vec<Vec<PointCheck>> = (0..mesh.elements.len())
+    (0..mesh.elements.len())
         .into_par_iter()
         .map_with(hessians, |hessians, e| {
             let Ok(values) = ElementValues::new(e, &mesh.element_coordinates(e), &rule, true)
@@ -380,8 +398,8 @@ pub fn legendre_hadamard<M: EnergyModel>(
                         &nodal,
                         &values,
                         q,
-                        &gradient_fields,
-                        &gradient_free,
+                        gradient_fields,
+                        gradient_free,
                         hessians,
                     );
                     PointCheck {
@@ -394,7 +412,20 @@ pub fn legendre_hadamard<M: EnergyModel>(
                 })
                 .collect()
         })
-        .collect();
+        .collect()
+}
+
+/// Folds the point checks into `report` in element order: the worst margins with their
+/// locations, and the violated fractions of the area.
+fn fold_checks(
+    report: &mut EllipticityReport,
+    checks: &[Vec<PointCheck>],
+    spec: &ModelSpec,
+    gradient_fields: &[usize],
+) {
+    let mut total_area = 0.0;
+    let mut violated_area = 0.0;
+    let mut field_violated_area = vec![0.0; report.gradient_free.len()];
     for check in checks.iter().flatten() {
         let weight = check.weight;
         total_area += weight;
@@ -438,7 +469,6 @@ pub fn legendre_hadamard<M: EnergyModel>(
     for field in report.gradient_free.iter_mut() {
         field.stable = field.worst_margin > -MARGIN_TOLERANCE;
     }
-    report
 }
 
 #[cfg(test)]
