@@ -45,101 +45,137 @@ pub fn minimize_scalar<E>(
         let value = f(x)?;
         Ok(if value.is_nan() { f64::INFINITY } else { value })
     };
-    let (mut lower, mut upper) = if a <= b { (a, b) } else { (b, a) };
+    let (lower, upper) = if a <= b { (a, b) } else { (b, a) };
     let tolerance = x_tolerance.abs();
     let relative = 2.0 * f64::EPSILON.sqrt();
-    // x: best point; w: second best; v: previous value of w.
-    let mut x = lower + GOLDEN * (upper - lower);
-    let mut w = x;
-    let mut v = x;
-    let mut fx = evaluate(x)?;
-    let mut fw = fx;
-    let mut fv = fx;
+    let x = lower + GOLDEN * (upper - lower);
+    let mut state = BrentState::new(lower, upper, x, evaluate(x)?);
     let mut evaluations = 1;
-    // d: last step; e: step before last.
-    let mut d: f64 = 0.0;
-    let mut e: f64 = 0.0;
     loop {
-        let middle = 0.5 * (lower + upper);
-        let tolerance1 = relative * x.abs() + tolerance / 2.0;
+        let middle = 0.5 * (state.lower + state.upper);
+        let tolerance1 = relative * state.x.abs() + tolerance / 2.0;
         let tolerance2 = 2.0 * tolerance1;
-        if (x - middle).abs() <= tolerance2 - 0.5 * (upper - lower) {
+        let converged = (state.x - middle).abs() <= tolerance2 - 0.5 * (state.upper - state.lower);
+        if converged || evaluations >= max_evaluations {
             return Ok(ScalarMinimum {
-                argument: x,
-                value: fx,
+                argument: state.x,
+                value: state.fx,
                 evaluations,
-                converged: true,
+                converged,
             });
         }
-        if evaluations >= max_evaluations {
-            return Ok(ScalarMinimum {
-                argument: x,
-                value: fx,
-                evaluations,
-                converged: false,
-            });
+        let u = state.next_point(middle, tolerance1, tolerance2);
+        let fu = evaluate(u)?;
+        evaluations += 1;
+        state.update(u, fu);
+    }
+}
+
+/// The bracket and the three best points of [`minimize_scalar`] (Brent's notation).
+struct BrentState {
+    lower: f64,
+    upper: f64,
+    /// Best point so far.
+    x: f64,
+    /// Second best.
+    w: f64,
+    /// Previous value of `w`.
+    v: f64,
+    fx: f64,
+    fw: f64,
+    fv: f64,
+    /// Last step.
+    d: f64,
+    /// Step before last.
+    e: f64,
+}
+
+impl BrentState {
+    fn new(lower: f64, upper: f64, x: f64, fx: f64) -> Self {
+        BrentState {
+            lower,
+            upper,
+            x,
+            w: x,
+            v: x,
+            fx,
+            fw: fx,
+            fv: fx,
+            d: 0.0,
+            e: 0.0,
         }
+    }
+
+    /// The next point to evaluate: the parabola's minimum through $`v, w, x`$ when it is
+    /// acceptable (inside the bracket, a step under half the one before last), else a golden
+    /// section step into the larger part of the bracket; never closer than `tolerance1` to
+    /// $`x`$.
+    fn next_point(&mut self, middle: f64, tolerance1: f64, tolerance2: f64) -> f64 {
+        let (x, lower, upper) = (self.x, self.lower, self.upper);
         let mut golden_step = true;
-        if e.abs() > tolerance1 {
+        if self.e.abs() > tolerance1 {
             // Parabola through (v, fv), (w, fw), (x, fx).
-            let r = (x - w) * (fx - fv);
-            let mut q = (x - v) * (fx - fw);
-            let mut p = (x - v) * q - (x - w) * r;
+            let r = (x - self.w) * (self.fx - self.fv);
+            let mut q = (x - self.v) * (self.fx - self.fw);
+            let mut p = (x - self.v) * q - (x - self.w) * r;
             q = 2.0 * (q - r);
             if q > 0.0 {
                 p = -p;
             }
             q = q.abs();
-            let previous = e;
-            e = d;
+            let previous = self.e;
+            self.e = self.d;
             if p.abs() < (0.5 * q * previous).abs() && p > q * (lower - x) && p < q * (upper - x) {
-                d = p / q;
-                let u = x + d;
+                self.d = p / q;
+                let u = x + self.d;
                 if u - lower < tolerance2 || upper - u < tolerance2 {
-                    d = if x < middle { tolerance1 } else { -tolerance1 };
+                    self.d = if x < middle { tolerance1 } else { -tolerance1 };
                 }
                 golden_step = false;
             }
         }
         if golden_step {
-            e = if x < middle { upper - x } else { lower - x };
-            d = GOLDEN * e;
+            self.e = if x < middle { upper - x } else { lower - x };
+            self.d = GOLDEN * self.e;
         }
-        let u = if d.abs() >= tolerance1 {
-            x + d
-        } else if d > 0.0 {
+        if self.d.abs() >= tolerance1 {
+            x + self.d
+        } else if self.d > 0.0 {
             x + tolerance1
         } else {
             x - tolerance1
-        };
-        let fu = evaluate(u)?;
-        evaluations += 1;
-        if fu <= fx {
+        }
+    }
+
+    /// Narrows the bracket with $`f(u)`$ and updates the best points.
+    fn update(&mut self, u: f64, fu: f64) {
+        let x = self.x;
+        if fu <= self.fx {
             if u < x {
-                upper = x;
+                self.upper = x;
             } else {
-                lower = x;
+                self.lower = x;
             }
-            v = w;
-            fv = fw;
-            w = x;
-            fw = fx;
-            x = u;
-            fx = fu;
+            self.v = self.w;
+            self.fv = self.fw;
+            self.w = x;
+            self.fw = self.fx;
+            self.x = u;
+            self.fx = fu;
         } else {
             if u < x {
-                lower = u;
+                self.lower = u;
             } else {
-                upper = u;
+                self.upper = u;
             }
-            if fu <= fw || w == x {
-                v = w;
-                fv = fw;
-                w = u;
-                fw = fu;
-            } else if fu <= fv || v == x || v == w {
-                v = u;
-                fv = fu;
+            if fu <= self.fw || self.w == x {
+                self.v = self.w;
+                self.fv = self.fw;
+                self.w = u;
+                self.fw = fu;
+            } else if fu <= self.fv || self.v == x || self.v == self.w {
+                self.v = u;
+                self.fv = fu;
             }
         }
     }
