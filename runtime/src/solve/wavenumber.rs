@@ -379,31 +379,55 @@ pub fn minimise_critical_load<M: EnergyModel>(
     if let Some(guess) = options.local_guess
         && guess.parameter > 0.0
         && guess.relative_step > 0.0
+        && search_near_guess(&mut searcher, guess)?
     {
-        searcher.scanning = false;
-        let local = local_parabolic_minimum(
-            |x| Ok::<f64, SolveError>(searcher.evaluate(x.exp())),
-            guess.parameter.ln(),
-            guess.relative_step.ln_1p(),
-            options.relative_tolerance.ln_1p(),
-            LOCAL_EVALUATIONS,
-        )?;
-        if local.is_some() {
-            return finish_search(searcher);
-        }
-        if !options.scan_after_local {
-            return Err(SolveError::Buckling(format!(
-                "no minimum of the critical load bracketed near `{}` = {:e} ({} analyses)",
-                options.parameter,
-                guess.parameter,
-                searcher.evaluations.len()
-            )));
-        }
-        // Not bracketed near the guess (or an evaluation rejected): the global search.
-        searcher.scanning = true;
+        return finish_search(searcher);
     }
-    // From short to long wavelengths, ending two points past the lowest value (module
-    // documentation): unevaluated points keep +∞.
+    let (values, best) = scan_for_lowest(&mut searcher, &scan)?;
+    refine_around(&mut searcher, &scan, ratio, &values, best)?;
+    finish_search(searcher)
+}
+
+/// The local search from `guess`: successive parabolic interpolation in $`\ln Q`$. Returns
+/// whether it bracketed a minimum; when it did not, fails unless
+/// [`WavenumberSearchOptions::scan_after_local`], and leaves the searcher scanning.
+fn search_near_guess<M: EnergyModel>(
+    searcher: &mut Searcher<'_, M>,
+    guess: LocalGuess,
+) -> Result<bool, SolveError> {
+    let options = searcher.options;
+    searcher.scanning = false;
+    let local = local_parabolic_minimum(
+        |x| Ok::<f64, SolveError>(searcher.evaluate(x.exp())),
+        guess.parameter.ln(),
+        guess.relative_step.ln_1p(),
+        options.relative_tolerance.ln_1p(),
+        LOCAL_EVALUATIONS,
+    )?;
+    if local.is_some() {
+        return Ok(true);
+    }
+    if !options.scan_after_local {
+        return Err(SolveError::Buckling(format!(
+            "no minimum of the critical load bracketed near `{}` = {:e} ({} analyses)",
+            options.parameter,
+            guess.parameter,
+            searcher.evaluations.len()
+        )));
+    }
+    // Not bracketed near the guess (or an evaluation rejected): the global search.
+    searcher.scanning = true;
+    Ok(false)
+}
+
+/// The scan from short to long wavelengths, ending two points past the lowest value (module
+/// documentation): the values (unevaluated points keep $`+\infty`$) and the index of the
+/// lowest, which must be finite.
+fn scan_for_lowest<M: EnergyModel>(
+    searcher: &mut Searcher<'_, M>,
+    scan: &[f64],
+) -> Result<(Vec<f64>, usize), SolveError> {
+    let points = scan.len();
     let mut values = vec![f64::INFINITY; points];
     let mut lowest: Option<usize> = None;
     for k in (0..points).rev() {
@@ -420,11 +444,27 @@ pub fn minimise_critical_load<M: EnergyModel>(
         .expect("the scan is not empty");
     if !values[best].is_finite() {
         return Err(SolveError::Buckling(no_threshold_message(
-            options,
+            searcher.options,
             &searcher.evaluations,
         )));
     }
-    // Refine in the bracket around the best scan point, warm-started from it.
+    Ok((values, best))
+}
+
+/// Refines in the bracket around the best scan point, warm-started from it: successive
+/// parabolic interpolation in $`\ln Q`$ from the scan's bracket when both neighbours of the
+/// best point were accepted, Brent's method over the bracket otherwise (a point at an end of
+/// the scan is bracketed one ratio beyond it).
+fn refine_around<M: EnergyModel>(
+    searcher: &mut Searcher<'_, M>,
+    scan: &[f64],
+    ratio: f64,
+    values: &[f64],
+    best: usize,
+) -> Result<(), SolveError> {
+    let options = searcher.options;
+    let (low, high) = options.range;
+    let points = scan.len();
     if let Some((_, buckling, _, reference)) = &searcher.best {
         searcher.warm = Some((buckling.clone(), *reference));
         searcher.last_load = buckling.critical_loads.first().copied();
@@ -440,8 +480,6 @@ pub fn minimise_critical_load<M: EnergyModel>(
     } else {
         scan[best + 1]
     };
-    // Successive parabolic interpolation in ln Q from the scan's bracket when both neighbours
-    // of the best point were accepted; Brent's method over the bracket otherwise.
     let interior = best > 0 && best + 1 < points;
     if interior && values[best - 1].is_finite() && values[best + 1].is_finite() {
         let triple = [best - 1, best, best + 1].map(|k| (scan[k].ln(), values[k]));
@@ -461,7 +499,7 @@ pub fn minimise_critical_load<M: EnergyModel>(
             100,
         )?;
     }
-    finish_search(searcher)
+    Ok(())
 }
 
 /// The second shift tried in a wide scan, as a fraction of the last accepted critical load.
