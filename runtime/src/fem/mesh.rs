@@ -106,85 +106,11 @@ impl Mesh {
         }
         let xs = graded_breakpoints(lx, nx, grading);
         let ys = graded_breakpoints(ly, ny, grading);
-        // Grid of (2nx+1) × (2ny+1) positions, without element centres.
-        let gx = 2 * nx + 1;
-        let gy = 2 * ny + 1;
-        let coordinate = |breaks: &[f64], k: usize| {
-            if k.is_multiple_of(2) {
-                breaks[k / 2]
-            } else {
-                0.5 * (breaks[k / 2] + breaks[k / 2 + 1])
-            }
-        };
-        let mut id = vec![usize::MAX; gx * gy];
-        let mut nodes = Vec::new();
-        for j in 0..gy {
-            for i in 0..gx {
-                if !i.is_multiple_of(2) && !j.is_multiple_of(2) {
-                    continue;
-                }
-                id[j * gx + i] = nodes.len();
-                nodes.push([coordinate(&xs, i), coordinate(&ys, j)]);
-            }
-        }
-        let at = |i: usize, j: usize| id[j * gx + i];
-        let mut elements = Vec::with_capacity(nx * ny);
-        for ey in 0..ny {
-            for ex in 0..nx {
-                let (i, j) = (2 * ex, 2 * ey);
-                elements.push([
-                    at(i, j),
-                    at(i + 2, j),
-                    at(i + 2, j + 2),
-                    at(i, j + 2),
-                    at(i + 1, j),
-                    at(i + 2, j + 1),
-                    at(i + 1, j + 2),
-                    at(i, j + 1),
-                ]);
-            }
-        }
-        let mut edges = BTreeMap::new();
-        edges.insert(
-            "bottom".to_string(),
-            (0..nx)
-                .map(|e| [at(2 * e, 0), at(2 * e + 2, 0), at(2 * e + 1, 0)])
-                .collect(),
-        );
-        edges.insert(
-            "top".to_string(),
-            (0..nx)
-                .map(|e| {
-                    [
-                        at(2 * e, gy - 1),
-                        at(2 * e + 2, gy - 1),
-                        at(2 * e + 1, gy - 1),
-                    ]
-                })
-                .collect(),
-        );
-        edges.insert(
-            "left".to_string(),
-            (0..ny)
-                .map(|e| [at(0, 2 * e), at(0, 2 * e + 2), at(0, 2 * e + 1)])
-                .collect(),
-        );
-        edges.insert(
-            "right".to_string(),
-            (0..ny)
-                .map(|e| {
-                    [
-                        at(gx - 1, 2 * e),
-                        at(gx - 1, 2 * e + 2),
-                        at(gx - 1, 2 * e + 1),
-                    ]
-                })
-                .collect(),
-        );
+        let (nodes, numbering) = NodeGrid::number(&xs, &ys);
         let mut mesh = Mesh {
             nodes,
-            elements,
-            edges,
+            elements: numbering.elements(),
+            edges: numbering.edges(),
             points: BTreeMap::new(),
             grid: Some(StructuredGrid { xs, ys }),
         };
@@ -242,6 +168,98 @@ impl Mesh {
             }
         }
         best.1
+    }
+}
+
+/// The node numbering of [`Mesh::rectangle`]: a grid of $`(2n_x+1)\times(2n_y+1)`$ positions
+/// (element corners and mid-sides; element centres carry no node), numbered row by row.
+struct NodeGrid {
+    /// Elements along X and Y.
+    nx: usize,
+    ny: usize,
+    /// Positions along X and Y.
+    gx: usize,
+    gy: usize,
+    /// Node number of each position (`usize::MAX` at element centres).
+    id: Vec<usize>,
+}
+
+impl NodeGrid {
+    /// Numbers the nodes of the grid on the element boundaries `xs`, `ys`; returns their
+    /// coordinates and the numbering.
+    fn number(xs: &[f64], ys: &[f64]) -> (Vec<[f64; 2]>, NodeGrid) {
+        let (nx, ny) = (xs.len() - 1, ys.len() - 1);
+        let gx = 2 * nx + 1;
+        let gy = 2 * ny + 1;
+        let coordinate = |breaks: &[f64], k: usize| {
+            if k.is_multiple_of(2) {
+                breaks[k / 2]
+            } else {
+                0.5 * (breaks[k / 2] + breaks[k / 2 + 1])
+            }
+        };
+        let mut id = vec![usize::MAX; gx * gy];
+        let mut nodes = Vec::new();
+        for j in 0..gy {
+            for i in 0..gx {
+                if !i.is_multiple_of(2) && !j.is_multiple_of(2) {
+                    continue;
+                }
+                id[j * gx + i] = nodes.len();
+                nodes.push([coordinate(xs, i), coordinate(ys, j)]);
+            }
+        }
+        let grid = NodeGrid { nx, ny, gx, gy, id };
+        (nodes, grid)
+    }
+
+    /// The node at position $`(i, j)`$.
+    fn at(&self, i: usize, j: usize) -> usize {
+        self.id[j * self.gx + i]
+    }
+
+    /// Element connectivity in VTK Q8 order, row by row.
+    fn elements(&self) -> Vec<[usize; QUAD8_NODES]> {
+        let mut elements = Vec::with_capacity(self.nx * self.ny);
+        for ey in 0..self.ny {
+            for ex in 0..self.nx {
+                let (i, j) = (2 * ex, 2 * ey);
+                elements.push([
+                    self.at(i, j),
+                    self.at(i + 2, j),
+                    self.at(i + 2, j + 2),
+                    self.at(i, j + 2),
+                    self.at(i + 1, j),
+                    self.at(i + 2, j + 1),
+                    self.at(i + 1, j + 2),
+                    self.at(i, j + 1),
+                ]);
+            }
+        }
+        elements
+    }
+
+    /// The four named edges, segments `[end, end, middle]` in increasing coordinate.
+    fn edges(&self) -> BTreeMap<String, Vec<[usize; 3]>> {
+        let (gx, gy) = (self.gx, self.gy);
+        // Segment `e` of the line of positions `position(k)`.
+        let segments = |count: usize, position: &dyn Fn(usize) -> (usize, usize)| {
+            (0..count)
+                .map(|e| {
+                    let node = |k| {
+                        let (i, j) = position(k);
+                        self.at(i, j)
+                    };
+                    [node(2 * e), node(2 * e + 2), node(2 * e + 1)]
+                })
+                .collect()
+        };
+        let mut edges = BTreeMap::new();
+        edges.insert("bottom".to_string(), segments(self.nx, &|k| (k, 0)));
+        edges.insert("top".to_string(), segments(self.nx, &|k| (k, gy - 1)));
+        edges.insert("left".to_string(), segments(self.ny, &|k| (0, k)));
+        edges.insert("right".to_string(), segments(self.ny, &|k| (gx - 1, k)));
+        edges
     }
 }
 
