@@ -257,49 +257,10 @@ impl PadeApproximant {
         }
         start = start.min(upper);
 
-        let (mut low, mut high);
-        if accepted(start) {
-            low = start;
-            loop {
-                if low >= upper {
-                    return upper;
-                }
-                let candidate = low * SCAN_GROWTH;
-                if candidate >= upper {
-                    if accepted(upper) {
-                        return upper;
-                    }
-                    high = upper;
-                    break;
-                }
-                if !accepted(candidate) {
-                    high = candidate;
-                    break;
-                }
-                low = candidate;
-                if low >= UNBOUNDED_RANGE * start {
-                    return f64::INFINITY;
-                }
-            }
-        } else {
-            high = start;
-            low = start;
-            let mut found = false;
-            for _ in 0..MAXIMAL_HALVINGS {
-                low *= 0.5;
-                if low <= 0.0 {
-                    break;
-                }
-                if accepted(low) {
-                    found = true;
-                    break;
-                }
-                high = low;
-            }
-            if !found {
-                return 0.0;
-            }
-        }
+        let (mut low, mut high) = match bracket_step_length(&accepted, start, upper) {
+            StepBracket::Final(length) => return length,
+            StepBracket::Between(low, high) => (low, high),
+        };
         for _ in 0..BISECTION_STEPS {
             let middle = 0.5 * (low + high);
             if accepted(middle) {
@@ -390,6 +351,57 @@ impl PadeApproximant {
 struct Projections {
     alpha: Vec<Vec<f64>>,
     independent: Vec<bool>,
+}
+
+/// Where the search of [`PadeApproximant::pade_step_length_with_pole_safety`] stands after
+/// bracketing the criterion.
+enum StepBracket {
+    /// The step length is decided.
+    Final(f64),
+    /// The criterion holds at the first value and fails at the second.
+    Between(f64, f64),
+}
+
+/// Brackets the end of the range where `accepted` holds, from `start` (at most `upper`): grows
+/// by [`SCAN_GROWTH`] while it holds (up to `upper`, which is final when accepted; a range
+/// beyond [`UNBOUNDED_RANGE`] times `start` is infinite), else halves until it holds (0 when it
+/// never does within [`MAXIMAL_HALVINGS`]).
+fn bracket_step_length(accepted: &dyn Fn(f64) -> bool, start: f64, upper: f64) -> StepBracket {
+    if accepted(start) {
+        let mut low = start;
+        loop {
+            if low >= upper {
+                return StepBracket::Final(upper);
+            }
+            let candidate = low * SCAN_GROWTH;
+            if candidate >= upper {
+                if accepted(upper) {
+                    return StepBracket::Final(upper);
+                }
+                return StepBracket::Between(low, upper);
+            }
+            if !accepted(candidate) {
+                return StepBracket::Between(low, candidate);
+            }
+            low = candidate;
+            if low >= UNBOUNDED_RANGE * start {
+                return StepBracket::Final(f64::INFINITY);
+            }
+        }
+    }
+    let mut high = start;
+    let mut low = start;
+    for _ in 0..MAXIMAL_HALVINGS {
+        low *= 0.5;
+        if low <= 0.0 {
+            break;
+        }
+        if accepted(low) {
+            return StepBracket::Between(low, high);
+        }
+        high = low;
+    }
+    StepBracket::Final(0.0)
 }
 
 /// $`a, a^2, a^3, \dots`$, each power the previous one times $`a`$.
