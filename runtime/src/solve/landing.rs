@@ -158,3 +158,41 @@ pub fn parameter_at_load(load_at: impl Fn(f64) -> f64, a: f64, max_load: f64) ->
     }
     high
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn point(load: f64) -> PathState {
+        PathState {
+            displacement: vec![2.0 * load],
+            load,
+        }
+    }
+
+    /// The bisection ends on the side at or above the load, to the last bit of the bracket.
+    #[test]
+    fn parameter_at_load_lands_at_or_above_the_load() {
+        let a = parameter_at_load(|a| a * a, 4.0, 2.0);
+        assert!(a * a >= 2.0);
+        assert!((a - 2f64.sqrt()).abs() <= 1e-15);
+    }
+
+    /// The chord point interpolates the measure linearly; an end kept twice has its value
+    /// halved (Illinois), which moves the next chord point towards it.
+    #[test]
+    fn bracket_interpolates_and_halves_a_stale_end() {
+        let mut bracket = Bracket {
+            low: (-1.0, point(0.0)),
+            high: (3.0, point(4.0)),
+            side: 0,
+        };
+        let chord = bracket.chord_point();
+        assert_eq!((chord.load, chord.displacement[0]), (1.0, 2.0));
+        bracket.narrow(1.0, point(2.0));
+        assert_eq!((bracket.low.0, bracket.high.0), (-1.0, 1.0));
+        bracket.narrow(0.5, point(1.5));
+        assert_eq!((bracket.low.0, bracket.high.0), (-0.5, 0.5));
+        assert_eq!(bracket.chord_point().load, 0.75);
+    }
+}
