@@ -13,80 +13,12 @@
 use crate::scalar::Scalar;
 use crate::series::Series;
 
-/// Which derivative of a field a jet entry holds.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Derivative {
-    /// The field value $`f`$.
-    Value,
-    /// $`\partial f/\partial X`$.
-    X,
-    /// $`\partial f/\partial Y`$.
-    Y,
-}
+pub use wrinkle_contract::{Derivative, FieldRole, JetEntry};
 
-/// One entry of a model's jet: a field and one of its derivatives.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct JetEntry {
-    /// Index into [`ModelSpec::fields`].
-    pub field: usize,
-    /// Which derivative.
-    pub derivative: Derivative,
-}
-
-/// What a field is. Declared in the DSL (`w [deflection]`); the application layer derives from
-/// it which boundary conditions an edge imposes on the field, how the physical deflection is
-/// reconstructed and which amplitude a path reports — never from the field's name.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum FieldRole {
-    /// In-plane displacement $`u`$ along X.
-    DisplacementX,
-    /// In-plane displacement $`v`$ along Y.
-    DisplacementY,
-    /// Transverse deflection $`w`$ of a plate (THEORY.md §2).
-    Deflection,
-    /// Reissner–Mindlin rotation $`\theta_X`$, paired with $`\partial w/\partial X`$ in the
-    /// transverse shear strain $`\nabla w - \theta`$.
-    RotationX,
-    /// Reissner–Mindlin rotation $`\theta_Y`$, paired with $`\partial w/\partial Y`$.
-    RotationY,
-    /// Real envelope $`w_1`$ of the first harmonic: physical deflection
-    /// $`2 w_1 \cos(Q\,\mathbf{e}\cdot\mathbf{X})`$ (THEORY.md §3–4).
-    Envelope,
-    /// Real part $`a`$ of a complex first-harmonic envelope $`w_1 = a + i b`$ (THEORY.md §6).
-    EnvelopeReal,
-    /// Imaginary part $`b`$ of a complex first-harmonic envelope.
-    EnvelopeImaginary,
-    /// Mean (zeroth-harmonic) deflection $`w_0`$ of an envelope model.
-    MeanDeflection,
-    /// No role declared: the runtime derives nothing from the field.
-    Other,
-}
-
-impl FieldRole {
-    /// The DSL spelling (`displacement_x`, `deflection`, …).
-    pub fn name(self) -> &'static str {
-        match self {
-            FieldRole::DisplacementX => "displacement_x",
-            FieldRole::DisplacementY => "displacement_y",
-            FieldRole::Deflection => "deflection",
-            FieldRole::RotationX => "rotation_x",
-            FieldRole::RotationY => "rotation_y",
-            FieldRole::Envelope => "envelope",
-            FieldRole::EnvelopeReal => "envelope_real",
-            FieldRole::EnvelopeImaginary => "envelope_imaginary",
-            FieldRole::MeanDeflection => "mean_deflection",
-            FieldRole::Other => "other",
-        }
-    }
-    /// Whether the field is an out-of-plane quantity (a deflection, a rotation, an envelope):
-    /// clamped and simply supported plate edges constrain these, not the in-plane ones.
-    pub fn is_transverse(self) -> bool {
-        !matches!(
-            self,
-            FieldRole::DisplacementX | FieldRole::DisplacementY | FieldRole::Other
-        )
-    }
-}
+/// Most fields a model may have (element buffers are on the stack).
+pub const MAX_FIELDS: usize = 8;
+/// Longest term jet: one entry per field and [`Derivative`].
+pub const MAX_JET: usize = Derivative::ALL.len() * MAX_FIELDS;
 
 /// Quadrature rule a term is integrated with on the Q8 element.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -230,14 +162,14 @@ pub trait EnergyModel: Clone + Send + Sync + 'static {
         out: &mut [f64],
     ) {
         let m = out.len();
-        let mut jet = [Series::zeros(1); crate::fem::assembly::MAX_JET];
+        let mut jet = [Series::zeros(1); MAX_JET];
         for (i, series) in jet[..m].iter_mut().enumerate() {
             let mut coefficients: Vec<f64> = (0..=order).map(|k| tape[k * stride + i]).collect();
             coefficients[order] = 0.0;
             *series = Series::from_coefficients(&coefficients)
                 .expect("ANM orders stay below the series capacity");
         }
-        let mut residual = [Series::zeros(1); crate::fem::assembly::MAX_JET];
+        let mut residual = [Series::zeros(1); MAX_JET];
         self.residual(term, &jet[..m], &mut residual[..m]);
         for (o, r) in out.iter_mut().zip(&residual[..m]) {
             *o = r.coefficient(order);

@@ -12,7 +12,6 @@ use quote::{format_ident, quote};
 
 use crate::graph::{ExpressionGraph, Node, NodeId};
 use crate::kernel::{CompiledModel, TermKernel};
-use crate::semantic::Derivative;
 use crate::syntax::Quadrature;
 use crate::taylor::TaylorProgram;
 
@@ -330,11 +329,7 @@ pub fn generate(compiled: &CompiledModel) -> TokenStream {
 
     let jet_entries = model.jet.iter().map(|entry| {
         let field = entry.field;
-        let derivative = match entry.derivative {
-            Derivative::Value => quote!(Value),
-            Derivative::X => quote!(X),
-            Derivative::Y => quote!(Y),
-        };
+        let derivative = format_ident!("{}", entry.derivative.variant_name());
         quote!(::wrinkle_runtime::JetEntry {
             field: #field,
             derivative: ::wrinkle_runtime::Derivative::#derivative,

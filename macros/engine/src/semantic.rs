@@ -6,93 +6,11 @@ use std::collections::HashMap;
 use syn::Ident;
 
 use crate::graph::{ExpressionGraph, Function, NodeId};
-use crate::syntax::{BinaryOperator, Expression, Item, ModelDeclaration, Quadrature};
+use crate::syntax::{
+    BinaryOperator, Expression, Item, ModelDeclaration, Quadrature, available_derivatives,
+};
 
-/// Which derivative of a field a jet entry holds (mirror of the runtime's `Derivative`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Derivative {
-    /// The field value.
-    Value,
-    /// $`\partial/\partial X`$.
-    X,
-    /// $`\partial/\partial Y`$.
-    Y,
-}
-
-/// One model jet entry: a field index and a derivative.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct JetEntry {
-    /// Index into [`LoweredModel::fields`].
-    pub field: usize,
-    /// Which derivative.
-    pub derivative: Derivative,
-}
-
-/// What a field is (mirror of the runtime's `FieldRole`): the runtime derives boundary
-/// conditions, the physical deflection and the reported amplitudes from it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum FieldRole {
-    /// In-plane displacement along X.
-    DisplacementX,
-    /// In-plane displacement along Y.
-    DisplacementY,
-    /// Transverse deflection of a plate.
-    Deflection,
-    /// Reissner–Mindlin rotation paired with $`\partial w/\partial X`$.
-    RotationX,
-    /// Reissner–Mindlin rotation paired with $`\partial w/\partial Y`$.
-    RotationY,
-    /// Real envelope of the first harmonic of the deflection.
-    Envelope,
-    /// Real part of a complex first-harmonic envelope.
-    EnvelopeReal,
-    /// Imaginary part of a complex first-harmonic envelope.
-    EnvelopeImaginary,
-    /// Mean (zeroth-harmonic) deflection.
-    MeanDeflection,
-    /// No role declared: the runtime gives the field no meaning.
-    Other,
-}
-
-impl FieldRole {
-    /// Every role with its DSL spelling (the identifier in `w [deflection]`).
-    pub const ALL: [(FieldRole, &'static str); 10] = [
-        (FieldRole::DisplacementX, "displacement_x"),
-        (FieldRole::DisplacementY, "displacement_y"),
-        (FieldRole::Deflection, "deflection"),
-        (FieldRole::RotationX, "rotation_x"),
-        (FieldRole::RotationY, "rotation_y"),
-        (FieldRole::Envelope, "envelope"),
-        (FieldRole::EnvelopeReal, "envelope_real"),
-        (FieldRole::EnvelopeImaginary, "envelope_imaginary"),
-        (FieldRole::MeanDeflection, "mean_deflection"),
-        (FieldRole::Other, "other"),
-    ];
-
-    /// Looks a role up by its DSL spelling.
-    pub fn from_name(name: &str) -> Option<FieldRole> {
-        Self::ALL
-            .iter()
-            .find(|(_, spelling)| *spelling == name)
-            .map(|(role, _)| *role)
-    }
-
-    /// The runtime enum variant name (`DisplacementX`).
-    pub fn variant_name(self) -> &'static str {
-        match self {
-            FieldRole::DisplacementX => "DisplacementX",
-            FieldRole::DisplacementY => "DisplacementY",
-            FieldRole::Deflection => "Deflection",
-            FieldRole::RotationX => "RotationX",
-            FieldRole::RotationY => "RotationY",
-            FieldRole::Envelope => "Envelope",
-            FieldRole::EnvelopeReal => "EnvelopeReal",
-            FieldRole::EnvelopeImaginary => "EnvelopeImaginary",
-            FieldRole::MeanDeflection => "MeanDeflection",
-            FieldRole::Other => "Other",
-        }
-    }
-}
+pub use wrinkle_contract::{Derivative, FieldRole, JetEntry};
 
 /// A runtime parameter.
 #[derive(Clone, Debug)]
@@ -172,24 +90,24 @@ impl Binding {
     }
 }
 
-/// Raw jet code used during lowering: `3 * field + derivative`.
+/// Number of derivatives a field has in the jet.
+const DERIVATIVES: usize = Derivative::ALL.len();
+
+/// Raw jet code used during lowering: `DERIVATIVES * field + derivative`, so that codes sort
+/// by field, then derivative.
 fn jet_code(field: usize, derivative: Derivative) -> usize {
-    3 * field
-        + match derivative {
-            Derivative::Value => 0,
-            Derivative::X => 1,
-            Derivative::Y => 2,
-        }
+    DERIVATIVES * field + derivative.index()
+}
+
+/// The field a raw jet code belongs to.
+fn field_of_code(code: usize) -> usize {
+    code / DERIVATIVES
 }
 
 fn jet_entry_of_code(code: usize) -> JetEntry {
     JetEntry {
-        field: code / 3,
-        derivative: match code % 3 {
-            0 => Derivative::Value,
-            1 => Derivative::X,
-            _ => Derivative::Y,
-        },
+        field: field_of_code(code),
+        derivative: Derivative::ALL[code % DERIVATIVES],
     }
 }
 
@@ -229,14 +147,16 @@ impl Lowering {
             },
             Expression::Derivative { base, axis } => {
                 match self.scope.get(&base.to_string()).copied() {
-                    Some(Binding::Field(field)) => match axis.to_string().as_str() {
-                        "x" => Some(self.graph.jet(jet_code(field, Derivative::X))),
-                        "y" => Some(self.graph.jet(jet_code(field, Derivative::Y))),
-                        other => {
+                    Some(Binding::Field(field)) => match Derivative::from_name(&axis.to_string())
+                        .filter(|derivative| derivative.order() > 0)
+                    {
+                        Some(derivative) => Some(self.graph.jet(jet_code(field, derivative))),
+                        None => {
                             self.errors.push(syn::Error::new(
                                 axis.span(),
                                 format!(
-                                    "unsupported derivative `{base}.{other}`: only the first derivatives `{base}.x` and `{base}.y` are available"
+                                    "unsupported derivative `{base}.{axis}`: the derivatives available are {}",
+                                    available_derivatives(base)
                                 ),
                             ));
                             None
@@ -244,7 +164,7 @@ impl Lowering {
                     },
                     Some(binding) => {
                         self.errors.push(expression.span_range().error(format!(
-                            "unsupported derivative: `{base}` is {}, and only fields have derivatives `.x`/`.y`",
+                            "unsupported derivative: `{base}` is {}, and only fields have derivatives",
                             binding.kind()
                         )));
                         None
@@ -304,7 +224,7 @@ impl Lowering {
                 };
                 let lowered = lowered?;
                 if self.graph.depends_on_jet(lowered) {
-                    let field = self.graph.jet_dependencies(&[lowered])[0] / 3;
+                    let field = field_of_code(self.graph.jet_dependencies(&[lowered])[0]);
                     self.errors.push(expression.span_range().error(format!(
                         "`{function}` can only be applied to parameters and constants, but its argument depends on the field `{}` (functions are evaluated in f64, outside the differentiated kernels)",
                         self.fields[field]
@@ -418,7 +338,7 @@ pub fn lower_model(declaration: &ModelDeclaration) -> Result<LoweredModel, syn::
     let used_codes = graph.jet_dependencies(&roots);
     if errors.is_empty() {
         for (index, field) in declaration.fields.iter().map(|f| &f.name).enumerate() {
-            if !used_codes.iter().any(|code| code / 3 == index) {
+            if !used_codes.iter().any(|&code| field_of_code(code) == index) {
                 errors.push(syn::Error::new(
                     field.span(),
                     format!("field `{field}` is used by no energy term"),
@@ -494,7 +414,7 @@ fn validate_roles(declaration: &ModelDeclaration, errors: &mut Vec<syn::Error>) 
         let Some(role) = FieldRole::from_name(&role_name.to_string()) else {
             let expected: Vec<String> = FieldRole::ALL
                 .iter()
-                .map(|(_, spelling)| format!("`{spelling}`"))
+                .map(|role| format!("`{}`", role.name()))
                 .collect();
             errors.push(syn::Error::new(
                 role_name.span(),

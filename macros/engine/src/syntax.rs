@@ -17,6 +17,7 @@ use proc_macro2::{Span, TokenStream};
 use quote::ToTokens;
 use syn::parse::{Parse, ParseStream};
 use syn::{Attribute, Ident, LitStr, Token, bracketed, parenthesized};
+use wrinkle_contract::Derivative;
 
 mod keyword {
     syn::custom_keyword!(model);
@@ -417,6 +418,20 @@ impl Parse for ModelDeclaration {
     }
 }
 
+/// The derivatives of `base` the DSL offers, as written: `` `w.x` and `w.y` ``.
+pub fn available_derivatives(base: &Ident) -> String {
+    let spellings: Vec<String> = Derivative::ALL
+        .iter()
+        .filter(|derivative| derivative.order() > 0)
+        .map(|derivative| format!("`{base}.{}`", derivative.name()))
+        .collect();
+    match spellings.as_slice() {
+        [] => String::new(),
+        [only] => only.clone(),
+        [init @ .., last] => format!("{} and {last}", init.join(", ")),
+    }
+}
+
 /// Parses one expression (see the module grammar). Recoverable problems (bad exponents) are
 /// pushed to `errors` and parsing continues.
 pub fn parse_expression(
@@ -580,7 +595,10 @@ fn parse_primary(input: ParseStream, errors: &mut Vec<syn::Error>) -> syn::Resul
                 let literal: syn::Lit = input.parse()?;
                 return Err(syn::Error::new(
                     literal.span(),
-                    "unsupported derivative: expected `.x` or `.y`",
+                    format!(
+                        "unsupported derivative: the derivatives available are {}",
+                        available_derivatives(&name)
+                    ),
                 ));
             }
             let axis: Ident = input.parse()?;

@@ -25,6 +25,8 @@ use super::element::{ElementValues, GaussRule, JacobianError, QUAD8_NODES, deriv
 use super::mesh::Mesh;
 use crate::linear::pattern::{SparseMatrix, SparsityPattern};
 use crate::model::{Derivative, EnergyModel, JetEntry, QuadratureRule};
+/// The stack buffers' sizes, owned by the kernel contract (re-exported for older paths).
+pub use crate::model::{MAX_FIELDS, MAX_JET};
 use crate::scalar::Scalar;
 use rayon::prelude::*;
 use std::sync::Arc;
@@ -845,11 +847,6 @@ pub fn colour_elements(mesh: &Mesh) -> Vec<Vec<usize>> {
     }
     colours
 }
-
-/// Most fields a model may have (element buffers are on the stack).
-pub const MAX_FIELDS: usize = 8;
-/// Longest term jet (3 entries per field).
-pub const MAX_JET: usize = 3 * MAX_FIELDS;
 
 /// An element's nodal values (or forces) by field: `[f][k]` is field `f` at node `k`.
 type ElementLocal<S> = [[S; QUAD8_NODES]; MAX_FIELDS];
