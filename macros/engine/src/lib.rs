@@ -21,6 +21,7 @@
 pub mod codegen;
 pub mod graph;
 pub mod kernel;
+mod kernel_writer;
 pub mod semantic;
 pub mod simplify;
 pub mod syntax;

@@ -26,8 +26,8 @@ use std::collections::HashMap;
 use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
 
-use crate::codegen::{KernelWriter, Operation, operation_of};
 use crate::graph::{ExpressionGraph, Node, NodeId};
+use crate::kernel_writer::{KernelWriter, Operation, operation_of};
 
 /// One elementary operation of a [`TaylorProgram`]; `usize` operands are registers,
 /// [`NodeId`] operands are `f64` (parameter-only) nodes of the term graph.
