@@ -379,109 +379,76 @@ pub(crate) struct TaylorKernels {
 /// Generates the three kernels of `program` (the term's `f64` locals come from `writer`).
 pub(crate) fn generate(program: &TaylorProgram, writer: &KernelWriter<'_>) -> TaylorKernels {
     let reals = writer.statements(&program.real_operands());
-    let real = |c: NodeId| writer.reference(c);
-    let slot = |register: usize| program.slot_of[register];
+    let start = start_body(program, writer);
+    let predict = predict_body(program, writer);
+    let commit = commit_body(program, writer);
+    TaylorKernels {
+        start: quote!({ #reals #start }),
+        predict: quote!({ let k = order; #reals #predict }),
+        commit: quote!({ let k = order; #reals #commit }),
+    }
+}
 
-    // Order 0: plain evaluation.
+/// Order 0: plain evaluation, every slot's $`x_0`$ written to the tape.
+fn start_body(program: &TaylorProgram, writer: &KernelWriter<'_>) -> TokenStream {
     let mut start = TokenStream::new();
     for (index, instruction) in program.instructions.iter().enumerate() {
         let x = register_name(index);
-        let value = match *instruction {
-            Instruction::Jet(local) => quote!(jet[#local]),
-            Instruction::Add(a, b) => binary(a, quote!(+), b),
-            Instruction::Subtract(a, b) => binary(a, quote!(-), b),
-            Instruction::Multiply(a, b) => binary(a, quote!(*), b),
-            Instruction::Divide(a, b) => binary(a, quote!(/), b),
-            Instruction::Square(a) => binary(a, quote!(*), a),
-            Instruction::AddReal(a, c) => real_binary(a, quote!(+), real(c)),
-            Instruction::SubtractReal(a, c) => real_binary(a, quote!(-), real(c)),
-            Instruction::Scale(a, c) => real_binary(a, quote!(*), real(c)),
-            Instruction::DivideByReal(a, c) => real_binary(a, quote!(/), real(c)),
-            Instruction::SubtractFromReal(a, c) => {
-                let (a, c) = (register_name(a), real(c));
-                quote!(#c - #a)
-            }
-            Instruction::Negate(a) => {
-                let a = register_name(a);
-                quote!(-#a)
-            }
-            Instruction::Double(a) => binary(a, quote!(+), a),
-            Instruction::Reciprocal(a) => {
-                let a = register_name(a);
-                quote!(1.0 / #a)
-            }
-        };
+        let value = start_value(*instruction, writer);
         start.extend(quote!(let #x: f64 = #value;));
-        if let Some(s) = slot(index) {
+        if let Some(s) = program.slot_of[index] {
             start.extend(quote!(tape[#s] = #x;));
         }
     }
+    start
+}
 
-    // Order k with a zero order-k jet.
+/// The order-0 value of one instruction.
+fn start_value(instruction: Instruction, writer: &KernelWriter<'_>) -> TokenStream {
+    let real = |c: NodeId| writer.reference(c);
+    match instruction {
+        Instruction::Jet(local) => quote!(jet[#local]),
+        Instruction::Add(a, b) => binary(a, quote!(+), b),
+        Instruction::Subtract(a, b) => binary(a, quote!(-), b),
+        Instruction::Multiply(a, b) => binary(a, quote!(*), b),
+        Instruction::Divide(a, b) => binary(a, quote!(/), b),
+        Instruction::Square(a) => binary(a, quote!(*), a),
+        Instruction::AddReal(a, c) => real_binary(a, quote!(+), real(c)),
+        Instruction::SubtractReal(a, c) => real_binary(a, quote!(-), real(c)),
+        Instruction::Scale(a, c) => real_binary(a, quote!(*), real(c)),
+        Instruction::DivideByReal(a, c) => real_binary(a, quote!(/), real(c)),
+        Instruction::SubtractFromReal(a, c) => {
+            let (a, c) = (register_name(a), real(c));
+            quote!(#c - #a)
+        }
+        Instruction::Negate(a) => {
+            let a = register_name(a);
+            quote!(-#a)
+        }
+        Instruction::Double(a) => binary(a, quote!(+), a),
+        Instruction::Reciprocal(a) => {
+            let a = register_name(a);
+            quote!(1.0 / #a)
+        }
+    }
+}
+
+/// Order $`k`$ with a zero order-$`k`$ jet: the residual's coefficient in `out`, the slots'
+/// predicted $`x_k`$ on the tape.
+fn predict_body(program: &TaylorProgram, writer: &KernelWriter<'_>) -> TokenStream {
     let mut predict = TokenStream::new();
     for (index, instruction) in program.instructions.iter().enumerate() {
+        let slot = program.slot_of[index];
         if program.zero_in_prediction[index] {
-            if let Some(s) = slot(index) {
+            if let Some(s) = slot {
                 predict.extend(quote!(tape[k * stride + #s] = 0.0;));
             }
             continue;
         }
         let x = register_name(index);
-        let value_of = |r: usize| {
-            if program.zero_in_prediction[r] {
-                quote!(0.0)
-            } else {
-                let name = register_name(r);
-                quote!(#name)
-            }
-        };
-        let value = match *instruction {
-            Instruction::Jet(_) => unreachable!("jet entries are zero in the prediction"),
-            Instruction::Add(a, b) => {
-                let (a, b) = (value_of(a), value_of(b));
-                quote!(#a + #b)
-            }
-            Instruction::Subtract(a, b) => {
-                let (a, b) = (value_of(a), value_of(b));
-                quote!(#a - #b)
-            }
-            Instruction::AddReal(a, _) | Instruction::SubtractReal(a, _) => value_of(a),
-            Instruction::SubtractFromReal(a, _) | Instruction::Negate(a) => {
-                let a = value_of(a);
-                quote!(-#a)
-            }
-            Instruction::Double(a) => {
-                let a = value_of(a);
-                quote!(#a + #a)
-            }
-            Instruction::Scale(a, c) => {
-                let (a, c) = (value_of(a), real(c));
-                quote!(#a * #c)
-            }
-            Instruction::DivideByReal(a, c) => {
-                let (a, c) = (value_of(a), real(c));
-                quote!(#a / #c)
-            }
-            Instruction::Multiply(a, b) => {
-                let (a, b) = (slot(a).unwrap(), slot(b).unwrap());
-                quote!(::wrinkle_runtime::series::recurrence::product(tape, stride, #a, #b, k))
-            }
-            Instruction::Square(a) => {
-                let a = slot(a).unwrap();
-                quote!(::wrinkle_runtime::series::recurrence::square(tape, stride, #a, k))
-            }
-            Instruction::Divide(a, b) => {
-                let a = value_of(a);
-                let (b, c) = (slot(b).unwrap(), slot(index).unwrap());
-                quote!(::wrinkle_runtime::series::recurrence::quotient(#a, tape, stride, #b, #c, k))
-            }
-            Instruction::Reciprocal(a) => {
-                let (b, r) = (slot(a).unwrap(), slot(index).unwrap());
-                quote!(::wrinkle_runtime::series::recurrence::reciprocal(tape, stride, #b, #r, k))
-            }
-        };
+        let value = predict_value(program, index, *instruction, writer);
         predict.extend(quote!(let #x: f64 = #value;));
-        if let Some(s) = slot(index) {
+        if let Some(s) = slot {
             predict.extend(quote!(tape[k * stride + #s] = #x;));
         }
     }
@@ -497,73 +464,150 @@ pub(crate) fn generate(program: &TaylorProgram, writer: &KernelWriter<'_>) -> Ta
             _ => quote!(out[#i] = 0.0;),
         });
     predict.extend(quote!(#(#outputs)*));
+    predict
+}
 
-    // Commit: forward-mode derivative at order 0 along the order-k jet.
-    let mut commit = TokenStream::new();
-    let order0 = |register: usize| {
-        let s = slot(register).expect("operands of nonlinear operations are on the tape");
-        quote!(tape[#s])
+/// The predicted order-$`k`$ value of instruction `index` (not zero in the prediction):
+/// linear operations propagate order-$`k`$ values, nonlinear ones run their recurrence over
+/// the tape.
+fn predict_value(
+    program: &TaylorProgram,
+    index: usize,
+    instruction: Instruction,
+    writer: &KernelWriter<'_>,
+) -> TokenStream {
+    let real = |c: NodeId| writer.reference(c);
+    let slot = |register: usize| program.slot_of[register];
+    let value_of = |r: usize| {
+        if program.zero_in_prediction[r] {
+            quote!(0.0)
+        } else {
+            let name = register_name(r);
+            quote!(#name)
+        }
     };
+    match instruction {
+        Instruction::Jet(_) => unreachable!("jet entries are zero in the prediction"),
+        Instruction::Add(a, b) => {
+            let (a, b) = (value_of(a), value_of(b));
+            quote!(#a + #b)
+        }
+        Instruction::Subtract(a, b) => {
+            let (a, b) = (value_of(a), value_of(b));
+            quote!(#a - #b)
+        }
+        Instruction::AddReal(a, _) | Instruction::SubtractReal(a, _) => value_of(a),
+        Instruction::SubtractFromReal(a, _) | Instruction::Negate(a) => {
+            let a = value_of(a);
+            quote!(-#a)
+        }
+        Instruction::Double(a) => {
+            let a = value_of(a);
+            quote!(#a + #a)
+        }
+        Instruction::Scale(a, c) => {
+            let (a, c) = (value_of(a), real(c));
+            quote!(#a * #c)
+        }
+        Instruction::DivideByReal(a, c) => {
+            let (a, c) = (value_of(a), real(c));
+            quote!(#a / #c)
+        }
+        Instruction::Multiply(a, b) => {
+            let (a, b) = (slot(a).unwrap(), slot(b).unwrap());
+            quote!(::wrinkle_runtime::series::recurrence::product(tape, stride, #a, #b, k))
+        }
+        Instruction::Square(a) => {
+            let a = slot(a).unwrap();
+            quote!(::wrinkle_runtime::series::recurrence::square(tape, stride, #a, k))
+        }
+        Instruction::Divide(a, b) => {
+            let a = value_of(a);
+            let (b, c) = (slot(b).unwrap(), slot(index).unwrap());
+            quote!(::wrinkle_runtime::series::recurrence::quotient(#a, tape, stride, #b, #c, k))
+        }
+        Instruction::Reciprocal(a) => {
+            let (b, r) = (slot(a).unwrap(), slot(index).unwrap());
+            quote!(::wrinkle_runtime::series::recurrence::reciprocal(tape, stride, #b, #r, k))
+        }
+    }
+}
+
+/// Commit: the forward-mode derivative at order 0 along the order-$`k`$ jet, added to every
+/// slot's $`x_k`$.
+fn commit_body(program: &TaylorProgram, writer: &KernelWriter<'_>) -> TokenStream {
+    let mut commit = TokenStream::new();
     for (index, instruction) in program.instructions.iter().enumerate() {
         let d = delta_name(index);
-        let dn = delta_name;
-        let value = match *instruction {
-            Instruction::Jet(local) => quote!(jet[#local]),
-            Instruction::Add(a, b) => {
-                let (a, b) = (dn(a), dn(b));
-                quote!(#a + #b)
-            }
-            Instruction::Subtract(a, b) => {
-                let (a, b) = (dn(a), dn(b));
-                quote!(#a - #b)
-            }
-            Instruction::AddReal(a, _) | Instruction::SubtractReal(a, _) => {
-                let a = dn(a);
-                quote!(#a)
-            }
-            Instruction::SubtractFromReal(a, _) | Instruction::Negate(a) => {
-                let a = dn(a);
-                quote!(-#a)
-            }
-            Instruction::Double(a) => {
-                let a = dn(a);
-                quote!(#a + #a)
-            }
-            Instruction::Scale(a, c) => {
-                let (a, c) = (dn(a), real(c));
-                quote!(#a * #c)
-            }
-            Instruction::DivideByReal(a, c) => {
-                let (a, c) = (dn(a), real(c));
-                quote!(#a / #c)
-            }
-            Instruction::Multiply(a, b) => {
-                let (da, db, a0, b0) = (dn(a), dn(b), order0(a), order0(b));
-                quote!(#a0 * #db + #da * #b0)
-            }
-            Instruction::Square(a) => {
-                let (da, a0) = (dn(a), order0(a));
-                quote!(2.0 * #a0 * #da)
-            }
-            Instruction::Divide(a, b) => {
-                let (da, db, b0, c0) = (dn(a), dn(b), order0(b), order0(index));
-                quote!((#da - #db * #c0) / #b0)
-            }
-            Instruction::Reciprocal(a) => {
-                let (da, a0, r0) = (dn(a), order0(a), order0(index));
-                quote!(-(#da * #r0) / #a0)
-            }
-        };
+        let value = commit_value(program, index, *instruction, writer);
         commit.extend(quote!(let #d: f64 = #value;));
-        if let Some(s) = slot(index) {
+        if let Some(s) = program.slot_of[index] {
             commit.extend(quote!(tape[k * stride + #s] += #d;));
         }
     }
+    commit
+}
 
-    TaylorKernels {
-        start: quote!({ #reals #start }),
-        predict: quote!({ let k = order; #reals #predict }),
-        commit: quote!({ let k = order; #reals #commit }),
+/// The directional derivative at order 0 of instruction `index` along the order-$`k`$ jet.
+fn commit_value(
+    program: &TaylorProgram,
+    index: usize,
+    instruction: Instruction,
+    writer: &KernelWriter<'_>,
+) -> TokenStream {
+    let real = |c: NodeId| writer.reference(c);
+    let order0 = |register: usize| {
+        let s =
+            program.slot_of[register].expect("operands of nonlinear operations are on the tape");
+        quote!(tape[#s])
+    };
+    let dn = delta_name;
+    match instruction {
+        Instruction::Jet(local) => quote!(jet[#local]),
+        Instruction::Add(a, b) => {
+            let (a, b) = (dn(a), dn(b));
+            quote!(#a + #b)
+        }
+        Instruction::Subtract(a, b) => {
+            let (a, b) = (dn(a), dn(b));
+            quote!(#a - #b)
+        }
+        Instruction::AddReal(a, _) | Instruction::SubtractReal(a, _) => {
+            let a = dn(a);
+            quote!(#a)
+        }
+        Instruction::SubtractFromReal(a, _) | Instruction::Negate(a) => {
+            let a = dn(a);
+            quote!(-#a)
+        }
+        Instruction::Double(a) => {
+            let a = dn(a);
+            quote!(#a + #a)
+        }
+        Instruction::Scale(a, c) => {
+            let (a, c) = (dn(a), real(c));
+            quote!(#a * #c)
+        }
+        Instruction::DivideByReal(a, c) => {
+            let (a, c) = (dn(a), real(c));
+            quote!(#a / #c)
+        }
+        Instruction::Multiply(a, b) => {
+            let (da, db, a0, b0) = (dn(a), dn(b), order0(a), order0(b));
+            quote!(#a0 * #db + #da * #b0)
+        }
+        Instruction::Square(a) => {
+            let (da, a0) = (dn(a), order0(a));
+            quote!(2.0 * #a0 * #da)
+        }
+        Instruction::Divide(a, b) => {
+            let (da, db, b0, c0) = (dn(a), dn(b), order0(b), order0(index));
+            quote!((#da - #db * #c0) / #b0)
+        }
+        Instruction::Reciprocal(a) => {
+            let (da, a0, r0) = (dn(a), order0(a), order0(index));
+            quote!(-(#da * #r0) / #a0)
+        }
     }
 }
 
