@@ -5,7 +5,7 @@ use std::collections::HashMap;
 use std::fmt::Write;
 
 use crate::graph::{ExpressionGraph, NodeId};
-use crate::semantic::LoweredModel;
+use crate::semantic::{LoweredModel, LoweredTerm};
 use crate::simplify::{
     SimplificationLimits, SimplificationStatistics, SimplifyError, StopKind, simplify,
 };
@@ -75,104 +75,128 @@ pub fn compile(
     let mut terms = Vec::with_capacity(model.terms.len());
     let mut report = String::new();
     for term in &model.terms {
-        let reference = differentiate_term(&model.graph, term.energy, &term.jet);
-        // Outputs that are already the constant zero stay out of the e-graph.
-        let mut outputs = vec![reference.energy];
-        outputs.extend(&reference.residual);
-        outputs.extend(reference.tangent.iter().map(|(_, root)| *root));
-        let live: Vec<NodeId> = outputs
-            .iter()
-            .copied()
-            .filter(|&root| reference.graph.constant_value(root) != Some(0.0))
-            .collect();
-        let simplified = if live.is_empty() {
-            None
-        } else {
-            Some(simplify(&reference.graph, &live, limits)?)
-        };
-        let (mut graph, statistics, mut mapped) = match simplified {
-            Some(result) => {
-                let map: HashMap<NodeId, NodeId> = live
-                    .iter()
-                    .copied()
-                    .zip(result.roots.iter().copied())
-                    .collect();
-                (result.graph, result.statistics, map)
-            }
-            None => (
-                ExpressionGraph::new(),
-                SimplificationStatistics {
-                    nodes: 0,
-                    classes: 0,
-                    iterations: 0,
-                    stop: StopKind::NothingToDo,
-                    operations_before: 0,
-                    operations_after: 0,
-                    kept_input: false,
-                    operations_extracted: 0,
-                },
-                HashMap::new(),
-            ),
-        };
-        let zero = graph.constant(0.0);
-        let mut root_of = |root: NodeId| *mapped.entry(root).or_insert(zero);
-        let energy = root_of(reference.energy);
-        let residual: Vec<NodeId> = reference.residual.iter().map(|&r| root_of(r)).collect();
-        let mut tangent_pattern = Vec::new();
-        let mut tangent = Vec::new();
-        for &(entry, root) in &reference.tangent {
-            let simplified = root_of(root);
-            if graph.constant_value(simplified) != Some(0.0) {
-                tangent_pattern.push(entry);
-                tangent.push(simplified);
-            }
-        }
-        let zero_residuals = residual
-            .iter()
-            .filter(|&&r| graph.constant_value(r) == Some(0.0))
-            .count();
-        let _ = writeln!(
-            report,
-            "term `{}`: {} jet entries, {} residual entries ({} structurally zero), {} of {} upper tangent entries non-zero; e-graph {} nodes in {} classes after {} iterations, stopped: {}; {} scalar operations before, {} after simplification{}",
-            term.name,
-            term.jet.len(),
-            residual.len(),
-            zero_residuals,
-            tangent.len(),
-            reference.tangent.len(),
-            statistics.nodes,
-            statistics.classes,
-            statistics.iterations,
-            statistics.stop,
-            statistics.operations_before,
-            statistics.operations_after,
-            if statistics.kept_input {
-                format!(
-                    " (the extracted form had {} operations: input kept)",
-                    statistics.operations_extracted
-                )
-            } else {
-                String::new()
-            },
-        );
-        terms.push(TermKernel {
-            name: term.name.clone(),
-            quadrature: term.quadrature,
-            jet: term.jet.clone(),
-            graph,
-            energy,
-            residual,
-            tangent_pattern,
-            tangent,
-            reference,
-            statistics,
-        });
+        let kernel = compile_term(&model.graph, term, limits)?;
+        report_term(&mut report, &kernel);
+        terms.push(kernel);
     }
     Ok(CompiledModel {
         model,
         terms,
         report,
     })
+}
+
+/// Differentiates one term, simplifies all its outputs in one e-graph run and keeps the
+/// structurally non-zero tangent entries.
+fn compile_term(
+    source: &ExpressionGraph,
+    term: &LoweredTerm,
+    limits: &SimplificationLimits,
+) -> Result<TermKernel, SimplifyError> {
+    let reference = differentiate_term(source, term.energy, &term.jet);
+    let (mut graph, statistics, mut mapped) = simplify_outputs(&reference, limits)?;
+    let zero = graph.constant(0.0);
+    let mut root_of = |root: NodeId| *mapped.entry(root).or_insert(zero);
+    let energy = root_of(reference.energy);
+    let residual: Vec<NodeId> = reference.residual.iter().map(|&r| root_of(r)).collect();
+    let mut tangent_pattern = Vec::new();
+    let mut tangent = Vec::new();
+    for &(entry, root) in &reference.tangent {
+        let simplified = root_of(root);
+        if graph.constant_value(simplified) != Some(0.0) {
+            tangent_pattern.push(entry);
+            tangent.push(simplified);
+        }
+    }
+    Ok(TermKernel {
+        name: term.name.clone(),
+        quadrature: term.quadrature,
+        jet: term.jet.clone(),
+        graph,
+        energy,
+        residual,
+        tangent_pattern,
+        tangent,
+        reference,
+        statistics,
+    })
+}
+
+/// Simplifies every output of `reference` that is not already the constant zero (those stay
+/// out of the e-graph): the simplified graph, the run's statistics and the map from each
+/// simplified output's root in `reference.graph` to its root in the new graph.
+fn simplify_outputs(
+    reference: &ReferenceKernel,
+    limits: &SimplificationLimits,
+) -> Result<
+    (
+        ExpressionGraph,
+        SimplificationStatistics,
+        HashMap<NodeId, NodeId>,
+    ),
+    SimplifyError,
+> {
+    let mut outputs = vec![reference.energy];
+    outputs.extend(&reference.residual);
+    outputs.extend(reference.tangent.iter().map(|(_, root)| *root));
+    let live: Vec<NodeId> = outputs
+        .iter()
+        .copied()
+        .filter(|&root| reference.graph.constant_value(root) != Some(0.0))
+        .collect();
+    if live.is_empty() {
+        let statistics = SimplificationStatistics {
+            nodes: 0,
+            classes: 0,
+            iterations: 0,
+            stop: StopKind::NothingToDo,
+            operations_before: 0,
+            operations_after: 0,
+            kept_input: false,
+            operations_extracted: 0,
+        };
+        return Ok((ExpressionGraph::new(), statistics, HashMap::new()));
+    }
+    let result = simplify(&reference.graph, &live, limits)?;
+    let map = live
+        .iter()
+        .copied()
+        .zip(result.roots.iter().copied())
+        .collect();
+    Ok((result.graph, result.statistics, map))
+}
+
+/// Appends the term's line of the simplification report: sizes, structural zeros, why the
+/// e-graph run stopped, operation counts.
+fn report_term(report: &mut String, kernel: &TermKernel) {
+    let statistics = &kernel.statistics;
+    let zero_residuals = (0..kernel.residual.len())
+        .filter(|&i| kernel.residual_is_zero(i))
+        .count();
+    let _ = writeln!(
+        report,
+        "term `{}`: {} jet entries, {} residual entries ({} structurally zero), {} of {} upper tangent entries non-zero; e-graph {} nodes in {} classes after {} iterations, stopped: {}; {} scalar operations before, {} after simplification{}",
+        kernel.name,
+        kernel.jet.len(),
+        kernel.residual.len(),
+        zero_residuals,
+        kernel.tangent.len(),
+        kernel.reference.tangent.len(),
+        statistics.nodes,
+        statistics.classes,
+        statistics.iterations,
+        statistics.stop,
+        statistics.operations_before,
+        statistics.operations_after,
+        if statistics.kept_input {
+            format!(
+                " (the extracted form had {} operations: input kept)",
+                statistics.operations_extracted
+            )
+        } else {
+            String::new()
+        },
+    );
 }
 
 /// Residual and upper-triangle tangent of one term by memoised recursive differentiation.
