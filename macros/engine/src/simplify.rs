@@ -219,16 +219,15 @@ impl CostFunction<Symbolic> for OperationCost {
     }
 }
 
-/// Bounds of one equality-saturation run.
+/// Bounds of one equality-saturation run: sizes only, never time, so that the simplified
+/// kernels are a function of the model alone — the same on a loaded machine, in a debug build
+/// or at any optimisation level of the engine.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SimplificationLimits {
     /// Maximum number of e-nodes.
     pub node_limit: usize,
     /// Maximum number of rule-application iterations.
     pub iteration_limit: usize,
-    /// Wall-clock safety net (node and iteration limits should stop first, keeping builds
-    /// deterministic).
-    pub time_limit: Duration,
 }
 
 impl Default for SimplificationLimits {
@@ -236,7 +235,6 @@ impl Default for SimplificationLimits {
         Self {
             node_limit: 12_000,
             iteration_limit: 10,
-            time_limit: Duration::from_secs(2),
         }
     }
 }
@@ -250,8 +248,6 @@ pub enum StopKind {
     NodeLimit(usize),
     /// The iteration limit was reached; holds the number of iterations run.
     IterationLimit(usize),
-    /// The time limit was reached (seconds).
-    TimeLimit(f64),
     /// Any other reason given by egg.
     Other(String),
     /// Nothing to simplify (every output was already the constant zero).
@@ -264,7 +260,6 @@ impl fmt::Display for StopKind {
             StopKind::Saturated => write!(formatter, "saturated"),
             StopKind::NodeLimit(n) => write!(formatter, "node limit (e-graph reached {n} nodes)"),
             StopKind::IterationLimit(n) => write!(formatter, "iteration limit ({n} iterations)"),
-            StopKind::TimeLimit(seconds) => write!(formatter, "time limit ({seconds} s)"),
             StopKind::Other(reason) => write!(formatter, "{reason}"),
             StopKind::NothingToDo => write!(formatter, "nothing to simplify"),
         }
@@ -277,7 +272,8 @@ impl From<&StopReason> for StopKind {
             StopReason::Saturated => StopKind::Saturated,
             StopReason::NodeLimit(n) => StopKind::NodeLimit(*n),
             StopReason::IterationLimit(n) => StopKind::IterationLimit(*n),
-            StopReason::TimeLimit(seconds) => StopKind::TimeLimit(*seconds),
+            // `simplify` sets no time limit (egg's default is lifted), so egg never gives this.
+            StopReason::TimeLimit(seconds) => StopKind::Other(format!("time limit ({seconds} s)")),
             StopReason::Other(reason) => StopKind::Other(reason.clone()),
         }
     }
@@ -524,7 +520,8 @@ pub fn simplify(
         .with_egraph(egraph)
         .with_node_limit(limits.node_limit)
         .with_iter_limit(limits.iteration_limit)
-        .with_time_limit(limits.time_limit)
+        // egg stops after 5 s unless told otherwise: lift that, the size limits decide.
+        .with_time_limit(Duration::MAX)
         .run(&rules());
     let stop = runner
         .stop_reason
