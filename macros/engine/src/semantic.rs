@@ -7,7 +7,8 @@ use syn::Ident;
 
 use crate::graph::{ExpressionGraph, Function, NodeId};
 use crate::syntax::{
-    BinaryOperator, Expression, Item, ModelDeclaration, Quadrature, available_derivatives,
+    BinaryOperator, Expression, Item, ModelDeclaration, Quadrature, TermDeclaration,
+    available_derivatives,
 };
 
 pub use wrinkle_contract::{Derivative, FieldRole, JetEntry};
@@ -121,119 +122,153 @@ struct Lowering {
 }
 
 impl Lowering {
+    /// The node of `expression`, or `None` after recording why it has none.
     fn lower(&mut self, expression: &Expression) -> Option<NodeId> {
         match expression {
             Expression::Number { value, .. } => Some(self.graph.constant(*value)),
             Expression::Parenthesized { inner, .. } => self.lower(inner),
-            Expression::Name(name) => match self.scope.get(&name.to_string()).copied() {
-                Some(Binding::Field(field)) => {
-                    Some(self.graph.jet(jet_code(field, Derivative::Value)))
-                }
-                Some(Binding::Parameter(index)) => Some(self.graph.parameter(index)),
-                Some(Binding::Let(value)) => value,
-                Some(Binding::Term) => {
-                    self.errors.push(syn::Error::new(
-                        name.span(),
-                        format!(
-                            "`{name}` is an energy term, not a value: terms cannot be referenced (use a `let`)"
-                        ),
-                    ));
-                    None
-                }
-                None => {
-                    self.unknown(name);
-                    None
-                }
-            },
-            Expression::Derivative { base, axis } => {
-                match self.scope.get(&base.to_string()).copied() {
-                    Some(Binding::Field(field)) => match Derivative::from_name(&axis.to_string())
-                        .filter(|derivative| derivative.order() > 0)
-                    {
-                        Some(derivative) => Some(self.graph.jet(jet_code(field, derivative))),
-                        None => {
-                            self.errors.push(syn::Error::new(
-                                axis.span(),
-                                format!(
-                                    "unsupported derivative `{base}.{axis}`: the derivatives available are {}",
-                                    available_derivatives(base)
-                                ),
-                            ));
-                            None
-                        }
-                    },
-                    Some(binding) => {
-                        self.errors.push(expression.span_range().error(format!(
-                            "unsupported derivative: `{base}` is {}, and only fields have derivatives",
-                            binding.kind()
-                        )));
-                        None
-                    }
-                    None => {
-                        self.unknown(base);
-                        None
-                    }
-                }
-            }
+            Expression::Name(name) => self.lower_name(name),
+            Expression::Derivative { base, axis } => self.lower_derivative(expression, base, axis),
             Expression::Negate { operand, .. } => {
                 let operand = self.lower(operand)?;
                 Some(self.graph.negate(operand))
             }
-            Expression::Binary { operator, lhs, rhs } => {
-                let a = self.lower(lhs);
-                let b = self.lower(rhs);
-                let (a, b) = (a?, b?);
-                Some(match operator {
-                    BinaryOperator::Add => self.graph.add(a, b),
-                    BinaryOperator::Subtract => self.graph.subtract(a, b),
-                    BinaryOperator::Multiply => self.graph.multiply(a, b),
-                    BinaryOperator::Divide => {
-                        if self.graph.constant_value(b) == Some(0.0) {
-                            self.errors
-                                .push(rhs.span_range().error("division by the constant zero"));
-                            return None;
-                        }
-                        self.graph.divide(a, b)
-                    }
-                })
-            }
+            Expression::Binary { operator, lhs, rhs } => self.lower_binary(*operator, lhs, rhs),
             Expression::Power { base, exponent, .. } => {
-                let lowered = self.lower(base)?;
-                if *exponent < 0 && self.graph.constant_value(lowered) == Some(0.0) {
-                    self.errors.push(
-                        expression
-                            .span_range()
-                            .error("negative power of the constant zero"),
-                    );
-                    return None;
-                }
-                Some(self.graph.power(lowered, *exponent))
+                self.lower_power(expression, base, *exponent)
             }
             Expression::Call {
                 function, argument, ..
-            } => {
-                let lowered = self.lower(argument);
-                let Some(known) = Function::from_name(&function.to_string()) else {
-                    self.errors.push(syn::Error::new(
-                        function.span(),
-                        format!(
-                            "unknown function `{function}`: expected one of `sqrt`, `sin`, `cos`, `exp`, `ln`"
-                        ),
-                    ));
-                    return None;
-                };
-                let lowered = lowered?;
-                if self.graph.depends_on_jet(lowered) {
-                    let field = field_of_code(self.graph.jet_dependencies(&[lowered])[0]);
-                    self.errors.push(expression.span_range().error(format!(
-                        "`{function}` can only be applied to parameters and constants, but its argument depends on the field `{}` (functions are evaluated in f64, outside the differentiated kernels)",
-                        self.fields[field]
-                    )));
-                    return None;
-                }
-                Some(self.graph.apply(known, lowered))
+            } => self.lower_call(expression, function, argument),
+        }
+    }
+
+    /// A field's value, a parameter or a `let`.
+    fn lower_name(&mut self, name: &Ident) -> Option<NodeId> {
+        match self.scope.get(&name.to_string()).copied() {
+            Some(Binding::Field(field)) => Some(self.graph.jet(jet_code(field, Derivative::Value))),
+            Some(Binding::Parameter(index)) => Some(self.graph.parameter(index)),
+            Some(Binding::Let(value)) => value,
+            Some(Binding::Term) => {
+                self.errors.push(syn::Error::new(
+                    name.span(),
+                    format!(
+                        "`{name}` is an energy term, not a value: terms cannot be referenced (use a `let`)"
+                    ),
+                ));
+                None
+            }
+            None => {
+                self.unknown(name);
+                None
             }
         }
+    }
+
+    /// `base.axis`: a derivative of a field, with the contract's spelling of the derivative.
+    fn lower_derivative(
+        &mut self,
+        expression: &Expression,
+        base: &Ident,
+        axis: &Ident,
+    ) -> Option<NodeId> {
+        match self.scope.get(&base.to_string()).copied() {
+            Some(Binding::Field(field)) => {
+                let derivative = Derivative::from_name(&axis.to_string())
+                    .filter(|derivative| derivative.order() > 0);
+                if let Some(derivative) = derivative {
+                    return Some(self.graph.jet(jet_code(field, derivative)));
+                }
+                self.errors.push(syn::Error::new(
+                    axis.span(),
+                    format!(
+                        "unsupported derivative `{base}.{axis}`: the derivatives available are {}",
+                        available_derivatives(base)
+                    ),
+                ));
+            }
+            Some(binding) => {
+                self.errors.push(expression.span_range().error(format!(
+                    "unsupported derivative: `{base}` is {}, and only fields have derivatives",
+                    binding.kind()
+                )));
+            }
+            None => self.unknown(base),
+        }
+        None
+    }
+
+    /// `lhs op rhs`; both sides are lowered (and their errors recorded) before either is used.
+    fn lower_binary(
+        &mut self,
+        operator: BinaryOperator,
+        lhs: &Expression,
+        rhs: &Expression,
+    ) -> Option<NodeId> {
+        let a = self.lower(lhs);
+        let b = self.lower(rhs);
+        let (a, b) = (a?, b?);
+        Some(match operator {
+            BinaryOperator::Add => self.graph.add(a, b),
+            BinaryOperator::Subtract => self.graph.subtract(a, b),
+            BinaryOperator::Multiply => self.graph.multiply(a, b),
+            BinaryOperator::Divide => {
+                if self.graph.constant_value(b) == Some(0.0) {
+                    self.errors
+                        .push(rhs.span_range().error("division by the constant zero"));
+                    return None;
+                }
+                self.graph.divide(a, b)
+            }
+        })
+    }
+
+    /// `base^exponent`.
+    fn lower_power(
+        &mut self,
+        expression: &Expression,
+        base: &Expression,
+        exponent: i32,
+    ) -> Option<NodeId> {
+        let lowered = self.lower(base)?;
+        if exponent < 0 && self.graph.constant_value(lowered) == Some(0.0) {
+            self.errors.push(
+                expression
+                    .span_range()
+                    .error("negative power of the constant zero"),
+            );
+            return None;
+        }
+        Some(self.graph.power(lowered, exponent))
+    }
+
+    /// `function(argument)`: a known function of a parameter-only argument.
+    fn lower_call(
+        &mut self,
+        expression: &Expression,
+        function: &Ident,
+        argument: &Expression,
+    ) -> Option<NodeId> {
+        let lowered = self.lower(argument);
+        let Some(known) = Function::from_name(&function.to_string()) else {
+            self.errors.push(syn::Error::new(
+                function.span(),
+                format!(
+                    "unknown function `{function}`: expected one of `sqrt`, `sin`, `cos`, `exp`, `ln`"
+                ),
+            ));
+            return None;
+        };
+        let lowered = lowered?;
+        if self.graph.depends_on_jet(lowered) {
+            let field = field_of_code(self.graph.jet_dependencies(&[lowered])[0]);
+            self.errors.push(expression.span_range().error(format!(
+                "`{function}` can only be applied to parameters and constants, but its argument depends on the field `{}` (functions are evaluated in f64, outside the differentiated kernels)",
+                self.fields[field]
+            )));
+            return None;
+        }
+        Some(self.graph.apply(known, lowered))
     }
 
     fn unknown(&mut self, name: &Ident) {
@@ -247,13 +282,43 @@ impl Lowering {
         };
         self.errors.push(syn::Error::new(name.span(), message));
     }
+
+    /// Lowers the `let`s and terms in order; the terms that lower, depend on the jet and have
+    /// a fresh name, with their energy nodes.
+    fn lower_items<'a>(&mut self, items: &'a [Item]) -> Vec<(&'a TermDeclaration, NodeId)> {
+        let mut terms = Vec::new();
+        for item in items {
+            match item {
+                Item::Let(binding) => {
+                    let value = self.lower(&binding.value);
+                    declare_in(self, &binding.name, Binding::Let(value));
+                }
+                Item::Term(term) => {
+                    let value = self.lower(&term.value);
+                    let fresh = declare_in(self, &term.name, Binding::Term);
+                    let Some(value) = value else { continue };
+                    if !self.graph.depends_on_jet(value) {
+                        self.errors.push(syn::Error::new(
+                            term.name.span(),
+                            format!(
+                                "energy term `{}` depends on no field: a constant energy has no residual or tangent",
+                                term.name
+                            ),
+                        ));
+                    } else if fresh {
+                        terms.push((term, value));
+                    }
+                }
+            }
+        }
+        terms
+    }
 }
 
 /// Validates a parsed model and lowers it, returning every error found (combined).
 pub fn lower_model(declaration: &ModelDeclaration) -> Result<LoweredModel, syn::Error> {
     let mut errors: Vec<syn::Error> = declaration.deferred_errors.clone();
     let mut scope: HashMap<String, Binding> = HashMap::new();
-
     if declaration.fields.is_empty() {
         errors.push(syn::Error::new(
             declaration.fields_keyword,
@@ -265,113 +330,23 @@ pub fn lower_model(declaration: &ModelDeclaration) -> Result<LoweredModel, syn::
     }
     let field_roles = validate_roles(declaration, &mut errors);
     for (index, parameter) in declaration.parameters.iter().enumerate() {
-        declare(
-            &mut scope,
-            &parameter.name,
-            Binding::Parameter(index),
-            &mut errors,
-        );
+        let binding = Binding::Parameter(index);
+        declare(&mut scope, &parameter.name, binding, &mut errors);
     }
-
-    let mut declared_later = HashMap::new();
-    for item in &declaration.items {
-        match item {
-            Item::Let(binding) => {
-                declared_later.insert(binding.name.to_string(), "a `let`");
-            }
-            Item::Term(term) => {
-                declared_later.insert(term.name.to_string(), "an energy term");
-            }
-        }
-    }
-
     let mut lowering = Lowering {
         graph: ExpressionGraph::new(),
         scope,
-        declared_later,
+        declared_later: declared_later(&declaration.items),
         fields: declaration.fields.iter().map(|f| f.name.clone()).collect(),
         errors,
     };
-    let mut raw_terms = Vec::new();
-    for item in &declaration.items {
-        match item {
-            Item::Let(binding) => {
-                let value = lowering.lower(&binding.value);
-                declare_in(&mut lowering, &binding.name, Binding::Let(value));
-            }
-            Item::Term(term) => {
-                let value = lowering.lower(&term.value);
-                let fresh = declare_in(&mut lowering, &term.name, Binding::Term);
-                if let Some(value) = value {
-                    if !lowering.graph.depends_on_jet(value) {
-                        lowering.errors.push(syn::Error::new(
-                            term.name.span(),
-                            format!(
-                                "energy term `{}` depends on no field: a constant energy has no residual or tangent",
-                                term.name
-                            ),
-                        ));
-                    } else if fresh {
-                        raw_terms.push((term, value));
-                    }
-                }
-            }
-        }
-    }
+    let raw_terms = lowering.lower_items(&declaration.items);
     let mut errors = lowering.errors;
-    let has_terms = declaration
-        .items
-        .iter()
-        .any(|item| matches!(item, Item::Term(_)));
-    if !has_terms {
-        errors.push(syn::Error::new(
-            declaration.name.span(),
-            format!(
-                "model `{}` declares no `energy` term (add e.g. `energy stretching = ...;`)",
-                declaration.name
-            ),
-        ));
-    }
-
-    let graph = lowering.graph;
-    let roots: Vec<NodeId> = raw_terms.iter().map(|(_, value)| *value).collect();
-    let used_codes = graph.jet_dependencies(&roots);
-    if errors.is_empty() {
-        for (index, field) in declaration.fields.iter().map(|f| &f.name).enumerate() {
-            if !used_codes.iter().any(|&code| field_of_code(code) == index) {
-                errors.push(syn::Error::new(
-                    field.span(),
-                    format!("field `{field}` is used by no energy term"),
-                ));
-            }
-        }
-    }
+    check_model(declaration, &lowering.graph, &raw_terms, &mut errors);
     if let Some(combined) = combine(errors) {
         return Err(combined);
     }
-
-    // Renumber jet entries densely: model jet index = rank of the raw code.
-    let jet: Vec<JetEntry> = used_codes.iter().map(|&c| jet_entry_of_code(c)).collect();
-    let rank = |code: usize| {
-        used_codes
-            .binary_search(&code)
-            .expect("every jet code reachable from a term is in the model jet")
-    };
-    let mut final_graph = ExpressionGraph::new();
-    let mut memo = HashMap::new();
-    let terms = raw_terms
-        .iter()
-        .map(|(term, value)| {
-            let energy = final_graph.import(&graph, *value, &mut memo, &rank);
-            LoweredTerm {
-                name: term.name.to_string(),
-                quadrature: term.quadrature,
-                energy,
-                jet: final_graph.jet_dependencies(&[energy]),
-            }
-        })
-        .collect();
-
+    let (jet, graph, terms) = renumber_jet(&lowering.graph, &raw_terms);
     Ok(LoweredModel {
         name: declaration.name.clone(),
         registry_name: declaration.registry_name.value(),
@@ -396,9 +371,87 @@ pub fn lower_model(declaration: &ModelDeclaration) -> Result<LoweredModel, syn::
             })
             .collect(),
         jet,
-        graph: final_graph,
+        graph,
         terms,
     })
+}
+
+/// Every `let` and term name with its kind, for "declared later" hints.
+fn declared_later(items: &[Item]) -> HashMap<String, &'static str> {
+    items
+        .iter()
+        .map(|item| match item {
+            Item::Let(binding) => (binding.name.to_string(), "a `let`"),
+            Item::Term(term) => (term.name.to_string(), "an energy term"),
+        })
+        .collect()
+}
+
+/// Model-level checks: at least one `energy` term and, when nothing else is wrong, every field
+/// used by some term.
+fn check_model(
+    declaration: &ModelDeclaration,
+    graph: &ExpressionGraph,
+    raw_terms: &[(&TermDeclaration, NodeId)],
+    errors: &mut Vec<syn::Error>,
+) {
+    let has_terms = declaration
+        .items
+        .iter()
+        .any(|item| matches!(item, Item::Term(_)));
+    if !has_terms {
+        errors.push(syn::Error::new(
+            declaration.name.span(),
+            format!(
+                "model `{}` declares no `energy` term (add e.g. `energy stretching = ...;`)",
+                declaration.name
+            ),
+        ));
+    }
+    if !errors.is_empty() {
+        return;
+    }
+    let roots: Vec<NodeId> = raw_terms.iter().map(|(_, value)| *value).collect();
+    let used_codes = graph.jet_dependencies(&roots);
+    for (index, field) in declaration.fields.iter().map(|f| &f.name).enumerate() {
+        if !used_codes.iter().any(|&code| field_of_code(code) == index) {
+            errors.push(syn::Error::new(
+                field.span(),
+                format!("field `{field}` is used by no energy term"),
+            ));
+        }
+    }
+}
+
+/// Renumbers the jet densely (model jet index = rank of the raw code among those the terms
+/// use) and copies the terms into a fresh graph over those indices.
+fn renumber_jet(
+    graph: &ExpressionGraph,
+    raw_terms: &[(&TermDeclaration, NodeId)],
+) -> (Vec<JetEntry>, ExpressionGraph, Vec<LoweredTerm>) {
+    let roots: Vec<NodeId> = raw_terms.iter().map(|(_, value)| *value).collect();
+    let used_codes = graph.jet_dependencies(&roots);
+    let jet: Vec<JetEntry> = used_codes.iter().map(|&c| jet_entry_of_code(c)).collect();
+    let rank = |code: usize| {
+        used_codes
+            .binary_search(&code)
+            .expect("every jet code reachable from a term is in the model jet")
+    };
+    let mut final_graph = ExpressionGraph::new();
+    let mut memo = HashMap::new();
+    let terms = raw_terms
+        .iter()
+        .map(|(term, value)| {
+            let energy = final_graph.import(graph, *value, &mut memo, &rank);
+            LoweredTerm {
+                name: term.name.to_string(),
+                quadrature: term.quadrature,
+                energy,
+                jet: final_graph.jet_dependencies(&[energy]),
+            }
+        })
+        .collect();
+    (jet, final_graph, terms)
 }
 
 /// The declared role of every field; an unknown role name or a role declared twice (other than
