@@ -5,10 +5,10 @@ use std::collections::HashMap;
 
 use syn::Ident;
 
-use crate::graph::{ExpressionGraph, Function, NodeId};
+use crate::graph::{ExpressionGraph, Function, Node, NodeId};
 use crate::syntax::{
-    BinaryOperator, Expression, Item, ModelDeclaration, Quadrature, TermDeclaration,
-    available_derivatives,
+    BinaryOperator, Expression, Item, MAX_EXPONENT, ModelDeclaration, Quadrature, SpanRange,
+    TermDeclaration, available_derivatives, exponent_out_of_range,
 };
 
 pub use wrinkle_contract::{Derivative, FieldRole, JetEntry};
@@ -134,9 +134,11 @@ impl Lowering {
                 Some(self.graph.negate(operand))
             }
             Expression::Binary { operator, lhs, rhs } => self.lower_binary(*operator, lhs, rhs),
-            Expression::Power { base, exponent, .. } => {
-                self.lower_power(expression, base, *exponent)
-            }
+            Expression::Power {
+                base,
+                exponent,
+                exponent_span,
+            } => self.lower_power(expression, base, *exponent, exponent_span),
             Expression::Call {
                 function, argument, ..
             } => self.lower_call(expression, function, argument),
@@ -223,12 +225,14 @@ impl Lowering {
         })
     }
 
-    /// `base^exponent`.
+    /// `base^exponent`. A power of a power is one power whose exponent is the product of the
+    /// two: it must stay in the supported range too (the error points at the outer exponent).
     fn lower_power(
         &mut self,
         expression: &Expression,
         base: &Expression,
         exponent: i32,
+        exponent_span: &SpanRange,
     ) -> Option<NodeId> {
         let lowered = self.lower(base)?;
         if exponent < 0 && self.graph.constant_value(lowered) == Some(0.0) {
@@ -239,7 +243,17 @@ impl Lowering {
             );
             return None;
         }
-        Some(self.graph.power(lowered, exponent))
+        let power = self.graph.power(lowered, exponent);
+        if let Node::Power(_, combined) = self.graph.node(power)
+            && combined.unsigned_abs() > MAX_EXPONENT.unsigned_abs()
+        {
+            self.errors
+                .push(exponent_span.error(exponent_out_of_range(format_args!(
+                    "this power of a power has the exponent {combined} (exponents multiply), which"
+                ))));
+            return None;
+        }
+        Some(power)
     }
 
     /// `function(argument)`: a known function of a parameter-only argument.

@@ -477,10 +477,12 @@ impl Rebuild<'_> {
                 self.graph.multiply(a, b)
             }
             Symbolic::Pow([a, n]) => {
+                // Written exponents are within ±64 (`syntax::MAX_EXPONENT`); differentiation
+                // and power collection take them a little beyond, never near the `i32` bounds.
                 let exponent = self.egraph[n]
                     .data
                     .constant
-                    .filter(|real| real.0.fract() == 0.0 && real.0.abs() <= 64.0)
+                    .filter(|real| real.0.fract() == 0.0 && real.0.abs() <= f64::from(i32::MAX))
                     .ok_or(SimplifyError::NonIntegerExponent)?;
                 let a = self.build(a)?;
                 self.graph.power(a, exponent.0 as i32)

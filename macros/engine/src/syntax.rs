@@ -9,7 +9,7 @@
 //! product    := unary (('*' | '/') unary)*
 //! unary      := '-' unary | power
 //! power      := primary ('^' exponent)?          (right associative)
-//! exponent   := '-'? power                       (must fold to an integer literal)
+//! exponent   := '-'? power                       (must fold to an integer in -64..=64)
 //! primary    := number | name | name '.' axis | function '(' expression ')' | '(' expression ')'
 //! ```
 
@@ -507,22 +507,12 @@ fn parse_power(input: ParseStream, errors: &mut Vec<syn::Error>) -> syn::Result<
     if let Some(minus) = negative {
         exponent_span = SpanRange::single(minus).to(exponent_span);
     }
-    let exponent = match integer_exponent(&written) {
-        Ok(value) => {
-            let value = if negative.is_some() { -value } else { value };
-            match i32::try_from(value) {
-                Ok(value) => value,
-                Err(_) => {
-                    errors.push(exponent_span.error("exponent is out of the `i32` range"));
-                    1
-                }
-            }
-        }
-        Err(message) => {
-            errors.push(exponent_span.error(message));
-            1
-        }
-    };
+    let exponent = exponent_value(&written)
+        .and_then(|value| checked_exponent(if negative.is_some() { -value } else { value }));
+    let exponent = exponent.unwrap_or_else(|message| {
+        errors.push(exponent_span.error(message));
+        1
+    });
     Ok(Expression::Power {
         base: Box::new(base),
         exponent,
@@ -530,26 +520,37 @@ fn parse_power(input: ParseStream, errors: &mut Vec<syn::Error>) -> syn::Result<
     })
 }
 
-/// The value of an exponent that must be an integer literal (or a `^` chain of them).
-fn integer_exponent(expression: &Expression) -> Result<i64, String> {
+/// Largest exponent magnitude the DSL accepts: exponents are integers from `-MAX_EXPONENT` to
+/// `MAX_EXPONENT`, written or made by a power of a power. Differentiation lowers an exponent
+/// by at most two and the simplifier collects powers of one base only while their exponents
+/// stay below this bound, so every exponent inside the engine stays far inside `i32`.
+pub const MAX_EXPONENT: i32 = 64;
+
+/// The message for an exponent outside the supported range; `what` names it.
+pub fn exponent_out_of_range(what: impl std::fmt::Display) -> String {
+    format!("{what} is out of range: exponents are integers from -{MAX_EXPONENT} to {MAX_EXPONENT}")
+}
+
+/// `value` as an exponent, if it is an integer in the supported range.
+fn checked_exponent(value: f64) -> Result<i32, String> {
+    if value.is_finite() && value.fract() != 0.0 {
+        Err(format!(
+            "exponent must be an integer literal, found the non-integer `{value}`"
+        ))
+    } else if value.abs() <= f64::from(MAX_EXPONENT) {
+        Ok(value as i32)
+    } else {
+        Err(exponent_out_of_range(format_args!("exponent `{value}`")))
+    }
+}
+
+/// The value of an exponent written as a number literal, a `^` chain of them, or either in
+/// parentheses.
+fn exponent_value(expression: &Expression) -> Result<f64, String> {
     match expression {
-        Expression::Number { value, .. } => {
-            if value.fract() == 0.0 && value.abs() < 2.0e9 {
-                Ok(*value as i64)
-            } else {
-                Err(format!(
-                    "exponent must be an integer literal, found the non-integer `{value}`"
-                ))
-            }
-        }
-        Expression::Power { base, exponent, .. } => {
-            let base = integer_exponent(base)?;
-            u32::try_from(*exponent)
-                .ok()
-                .and_then(|exponent| base.checked_pow(exponent))
-                .ok_or_else(|| "exponent is not a representable integer".to_string())
-        }
-        Expression::Parenthesized { inner, .. } => integer_exponent(inner),
+        Expression::Number { value, .. } => Ok(*value),
+        Expression::Power { base, exponent, .. } => Ok(exponent_value(base)?.powi(*exponent)),
+        Expression::Parenthesized { inner, .. } => exponent_value(inner),
         _ => Err(
             "exponent must be an integer literal (e.g. `x^2` or `x^-1`); names and expressions are not allowed as exponents"
                 .to_string(),

@@ -433,6 +433,58 @@ fn model_level_errors_are_reported() {
 }
 
 #[test]
+fn exponents_outside_the_supported_range_are_errors_that_state_it() {
+    let messages = error_messages(quote! {
+        model Powers as "powers" {
+            fields: w;
+            energy e = w^65 + w.x^-2147483648 + (w.y^8)^9 + w^2^7 + w^-64;
+        }
+    });
+    // Written exponents are checked by the parser, a power of a power when it is lowered.
+    assert_eq!(messages.len(), 4, "{messages:#?}");
+    for (message, found) in messages.iter().zip([
+        "exponent `65`",
+        "exponent `-2147483648`",
+        "exponent `128`",
+        "the exponent 72",
+    ]) {
+        assert!(message.contains(found), "{message}");
+        assert!(
+            message.contains("out of range: exponents are integers from -64 to 64"),
+            "{message}"
+        );
+    }
+}
+
+#[test]
+fn exponents_at_the_ends_of_the_range_differentiate_and_simplify() {
+    // w^-64 differentiates to w^-65 and w^-66, and the e-graph collects w^63 w^63 into w^126:
+    // exponents the engine makes beyond the written range.
+    let model = compiled(quote! {
+        model Extremes as "extremes" {
+            fields: w;
+            energy e = w^-64 + w^64 + w^63 * w^63 + w.x^2;
+        }
+    });
+    let term = &model.terms[0];
+    let jet = [1.01, 0.3];
+    let residual = evaluate(term, term.residual[0], &[], &jet);
+    let truth = -64.0 * 1.01f64.powi(-65) + 64.0 * 1.01f64.powi(63) + 126.0 * 1.01f64.powi(125);
+    assert!(
+        relative_error(residual, truth, 1e-300) < 1e-12,
+        "{residual} vs {truth}"
+    );
+    let tangent = evaluate(term, term.tangent[0], &[], &jet);
+    let truth = 64.0 * 65.0 * 1.01f64.powi(-66)
+        + 64.0 * 63.0 * 1.01f64.powi(62)
+        + 126.0 * 125.0 * 1.01f64.powi(124);
+    assert!(
+        relative_error(tangent, truth, 1e-300) < 1e-12,
+        "{tangent} vs {truth}"
+    );
+}
+
+#[test]
 fn power_binds_tighter_than_unary_minus_and_is_right_associative() {
     let model = compiled(quote! {
         model Precedence as "precedence" {
