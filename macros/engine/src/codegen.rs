@@ -1,17 +1,24 @@
 //! Rust code generation: the parameter struct, `ModelSpec`, and the kernels of every term
 //! (written by the `kernel_writer` module's `KernelWriter` and, for the Taylor-mode kernels,
 //! [`taylor`](crate::taylor)).
+//!
+//! [`generate`] writes a compiled model. [`generate_stub`] writes, for a model whose
+//! declaration has errors, the same struct with an `EnergyModel` implementation whose kernels
+//! are never reached: code that uses the model then compiles on, and the user sees the
+//! declaration's own errors, not one more per use of the type.
+
+use std::collections::HashSet;
 
 use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
 
 use crate::kernel::{CompiledModel, TermKernel};
 use crate::kernel_writer::KernelWriter;
-use crate::semantic::Parameter;
-use crate::syntax::Quadrature;
+use crate::syntax::{ModelOutline, Quadrature, description};
 use crate::taylor::TaylorProgram;
 
-/// The generated type: its name, documentation and parameters.
+/// The generated type: the parts known as soon as the model's header and parameters parse
+/// (all that [`generate_stub`] needs).
 struct ModelType<'a> {
     name: &'a Ident,
     attributes: &'a [syn::Attribute],
@@ -75,11 +82,11 @@ impl ModelType<'_> {
 }
 
 /// The doc line of a parameter's struct field.
-fn parameter_documentation(parameter: &Parameter) -> String {
-    if parameter.documentation.is_empty() {
-        format!("Parameter `{}`.", parameter.name)
+fn parameter_documentation(name: &Ident, documentation: &str) -> String {
+    if documentation.is_empty() {
+        format!("Parameter `{name}`.")
     } else {
-        parameter.documentation.clone()
+        documentation.to_string()
     }
 }
 
@@ -101,7 +108,7 @@ pub fn generate(compiled: &CompiledModel) -> TokenStream {
         parameter_documentation: model
             .parameters
             .iter()
-            .map(parameter_documentation)
+            .map(|p| parameter_documentation(&p.name, &p.documentation))
             .collect(),
     };
     let programs: Vec<TaylorProgram> = compiled
@@ -248,6 +255,74 @@ fn kernel_methods(
 
         fn taylor_commit(&self, term: usize, order: usize, jet: &[f64], tape: &mut [f64], stride: usize) {
             #commit
+        }
+    }
+}
+
+/// A stand-in for a model whose declaration has errors (the errors themselves are emitted
+/// beside it): the struct and `new` as [`generate`] writes them, with the parameters that
+/// parsed (each name once), and an `EnergyModel` implementation whose `SPEC` has no fields
+/// and no terms and whose kernels are unreachable — a model that does not compile never runs.
+pub fn generate_stub(outline: &ModelOutline) -> TokenStream {
+    let mut seen = HashSet::new();
+    let parameters: Vec<_> = outline
+        .parameters
+        .iter()
+        .filter(|parameter| seen.insert(parameter.name.to_string()))
+        .collect();
+    let model_type = ModelType {
+        name: &outline.name,
+        attributes: &outline.attributes,
+        documentation: &outline.documentation,
+        registry_name: outline.registry_name.as_deref().unwrap_or_default(),
+        description: description(&outline.documentation),
+        parameters: parameters.iter().map(|p| p.name.clone()).collect(),
+        parameter_documentation: parameters
+            .iter()
+            .map(|p| {
+                let written = p.documentation.as_ref().map(|text| text.value());
+                parameter_documentation(&p.name, &written.unwrap_or_default())
+            })
+            .collect(),
+    };
+    let name = model_type.name;
+    let definition = model_type.definition();
+    let parameter_methods = model_type.parameter_methods();
+    let (registry_name, description) = (model_type.registry_name, &model_type.description);
+    let parameter_names = model_type.parameters.iter().map(ToString::to_string);
+    let unreachable = format!(
+        "model `{}` has errors in its declaration and no kernels",
+        escape_braces(&name.to_string())
+    );
+    quote! {
+        #definition
+
+        #[allow(clippy::all, unused_variables)]
+        impl ::wrinkle_runtime::EnergyModel for #name {
+            const SPEC: &'static ::wrinkle_runtime::ModelSpec = &::wrinkle_runtime::ModelSpec {
+                name: #registry_name,
+                description: #description,
+                fields: &[],
+                field_roles: &[],
+                parameters: &[#(#parameter_names),*],
+                jet: &[],
+                terms: &[],
+                simplification_report: "",
+            };
+
+            #parameter_methods
+
+            fn energy<S: ::wrinkle_runtime::Scalar>(&self, term: usize, jet: &[S]) -> S {
+                ::core::unreachable!(#unreachable)
+            }
+
+            fn residual<S: ::wrinkle_runtime::Scalar>(&self, term: usize, jet: &[S], out: &mut [S]) {
+                ::core::unreachable!(#unreachable)
+            }
+
+            fn tangent<S: ::wrinkle_runtime::Scalar>(&self, term: usize, jet: &[S], out: &mut [S]) {
+                ::core::unreachable!(#unreachable)
+            }
         }
     }
 }

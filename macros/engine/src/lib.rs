@@ -27,18 +27,22 @@ pub mod simplify;
 pub mod syntax;
 pub mod taylor;
 
-use proc_macro2::TokenStream;
+use proc_macro2::{Span, TokenStream};
 
 pub use graph::{EvaluationError, ExpressionGraph, Function, Node, NodeId};
 pub use kernel::{CompiledModel, ReferenceKernel, TermKernel, compile};
-pub use semantic::{Derivative, FieldRole, JetEntry, LoweredModel, lower_model};
+pub use semantic::{Derivative, FieldRole, JetEntry, LoweredModel, combine, lower_model};
 pub use simplify::{SimplificationLimits, SimplificationStatistics, SimplifyError, StopKind};
-pub use syntax::{ModelDeclaration, Quadrature};
+pub use syntax::{ModelDeclaration, ModelOutline, ParsedModel, Quadrature, parse_model};
 
 /// Parses and validates a model declaration, returning every error found.
 pub fn parse_and_lower(input: TokenStream) -> Result<LoweredModel, syn::Error> {
-    let declaration: ModelDeclaration = syn::parse2(input)?;
-    lower_model(&declaration)
+    match parse_model(input) {
+        ParsedModel::Complete(declaration) => lower_model(&declaration),
+        ParsedModel::Partial { errors, .. } | ParsedModel::Unnamed { errors } => {
+            Err(combine(errors).expect("a parse that stopped has an error"))
+        }
+    }
 }
 
 /// Runs the whole pipeline up to (not including) code generation.
@@ -47,20 +51,48 @@ pub fn analyze(
     limits: &SimplificationLimits,
 ) -> Result<CompiledModel, syn::Error> {
     let lowered = parse_and_lower(input)?;
-    compile(lowered, limits)
-        .map_err(|error| syn::Error::new(proc_macro2::Span::call_site(), error.to_string()))
+    compile(lowered, limits).map_err(internal_error)
+}
+
+/// A simplifier error (an internal invariant broken, never the user's input) at the call site.
+fn internal_error(error: SimplifyError) -> syn::Error {
+    syn::Error::new(Span::call_site(), error.to_string())
 }
 
 /// Expands an `energy_model!` invocation with the default [`SimplificationLimits`]: the
-/// generated code, or `compile_error!` invocations pointing at the offending tokens.
+/// generated code, or the errors and a stand-in for the model (see [`expand_with_limits`]).
 pub fn expand(input: TokenStream) -> TokenStream {
     expand_with_limits(input, &SimplificationLimits::default())
 }
 
 /// [`expand`] with explicit simplification limits.
+///
+/// On errors: one `compile_error!` per error, at the offending token, and — when the model's
+/// name parsed — a stand-in for the model ([`codegen::generate_stub`]: the same struct, `new`
+/// and an `EnergyModel` implementation whose kernels are never reached), so that code using
+/// the model reports nothing more and the user sees the declaration's own errors only.
 pub fn expand_with_limits(input: TokenStream, limits: &SimplificationLimits) -> TokenStream {
-    match analyze(input, limits) {
-        Ok(compiled) => codegen::generate(&compiled),
-        Err(error) => error.to_compile_error(),
+    let (outline, errors) = match parse_model(input) {
+        ParsedModel::Complete(declaration) => {
+            let compiled = lower_model(&declaration)
+                .and_then(|lowered| compile(lowered, limits).map_err(internal_error));
+            match compiled {
+                Ok(compiled) => return codegen::generate(&compiled),
+                Err(errors) => (Some(declaration.outline()), errors),
+            }
+        }
+        ParsedModel::Partial { outline, errors } => (
+            Some(outline),
+            combine(errors).expect("a parse that stopped has an error"),
+        ),
+        ParsedModel::Unnamed { errors } => (
+            None,
+            combine(errors).expect("a parse that stopped has an error"),
+        ),
+    };
+    let mut tokens = errors.to_compile_error();
+    if let Some(outline) = outline {
+        tokens.extend(codegen::generate_stub(&outline));
     }
+    tokens
 }

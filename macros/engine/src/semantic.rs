@@ -63,12 +63,7 @@ pub struct LoweredModel {
 impl LoweredModel {
     /// The one-line description: the first non-empty doc line.
     pub fn description(&self) -> String {
-        self.documentation
-            .iter()
-            .map(|line| line.trim())
-            .find(|line| !line.is_empty())
-            .unwrap_or("")
-            .to_string()
+        crate::syntax::description(&self.documentation)
     }
 }
 

@@ -12,10 +12,16 @@
 //! exponent   := '-'? power                       (must fold to an integer in -64..=64)
 //! primary    := number | name | name '.' axis | function '(' expression ')' | '(' expression ')'
 //! ```
+//!
+//! **Errors.** A problem that leaves the rest readable (an exponent that is not an integer in
+//! the supported range, an unknown quadrature rule) is collected with its span and parsing goes
+//! on; the first one that does not (a missing `;`, a stray token) stops the parser. Either way
+//! [`parse_model`] keeps every error collected and, once the model's name has parsed, the
+//! [`ModelOutline`] the stand-in for the model is generated from.
 
 use proc_macro2::{Span, TokenStream};
 use quote::ToTokens;
-use syn::parse::{Parse, ParseStream};
+use syn::parse::{ParseStream, Parser};
 use syn::{Attribute, Ident, LitStr, Token, bracketed, parenthesized};
 use wrinkle_contract::Derivative;
 
@@ -259,30 +265,122 @@ pub struct ModelDeclaration {
     pub deferred_errors: Vec<syn::Error>,
 }
 
-impl Parse for ModelDeclaration {
-    fn parse(input: ParseStream) -> syn::Result<Self> {
-        let attributes = input.call(Attribute::parse_outer)?;
-        let mut documentation = Vec::new();
-        let mut other_attributes = Vec::new();
-        for attribute in attributes {
-            if attribute.path().is_ident("doc")
-                && let syn::Meta::NameValue(syn::MetaNameValue {
-                    value:
-                        syn::Expr::Lit(syn::ExprLit {
-                            lit: syn::Lit::Str(text),
-                            ..
-                        }),
-                    ..
-                }) = &attribute.meta
-            {
-                let line = text.value();
-                documentation.push(line.strip_prefix(' ').unwrap_or(&line).to_string());
-                continue;
-            }
-            other_attributes.push(attribute);
+/// The one-line description of a model: the first non-empty line of its documentation.
+pub fn description(documentation: &[String]) -> String {
+    documentation
+        .iter()
+        .map(|line| line.trim())
+        .find(|line| !line.is_empty())
+        .unwrap_or("")
+        .to_string()
+}
+
+impl ModelDeclaration {
+    /// The parts of the declaration the generated type's declaration is made of.
+    pub fn outline(&self) -> ModelOutline {
+        ModelOutline {
+            documentation: self.documentation.clone(),
+            attributes: self.attributes.clone(),
+            name: self.name.clone(),
+            registry_name: Some(self.registry_name.value()),
+            parameters: self.parameters.clone(),
         }
+    }
+}
+
+/// The parts of a model that declare the generated type — documentation, attributes, name,
+/// registry name and parameters — as far as they parsed: what a stand-in for the model needs
+/// when its declaration has errors.
+#[derive(Clone, Debug)]
+pub struct ModelOutline {
+    /// Doc comment lines (`///`), without the leading space.
+    pub documentation: Vec<String>,
+    /// Non-doc attributes, forwarded to the generated struct.
+    pub attributes: Vec<Attribute>,
+    /// Rust type name of the model.
+    pub name: Ident,
+    /// Registry name, if it parsed.
+    pub registry_name: Option<String>,
+    /// The runtime parameters that parsed.
+    pub parameters: Vec<ParameterDeclaration>,
+}
+
+/// What the parser made of an `energy_model!` invocation.
+#[derive(Debug)]
+pub enum ParsedModel {
+    /// The whole declaration parsed; the errors that did not stop the parser (bad exponents,
+    /// unknown quadrature rules) are in its [`ModelDeclaration::deferred_errors`].
+    Complete(ModelDeclaration),
+    /// An error stopped the parser after the model's name: the outline parsed before it, and
+    /// every error found (those collected before the one that stopped it, then that one).
+    Partial {
+        /// What parsed before the error.
+        outline: ModelOutline,
+        /// Every error, in source order.
+        errors: Vec<syn::Error>,
+    },
+    /// An error came before the model's name.
+    Unnamed {
+        /// The errors (one).
+        errors: Vec<syn::Error>,
+    },
+}
+
+/// Parses an `energy_model!` invocation. Problems that leave the rest readable are collected
+/// and parsing goes on; the first one that does not (a missing `;`, a stray token) stops it,
+/// and everything parsed and collected before it is kept.
+pub fn parse_model(tokens: TokenStream) -> ParsedModel {
+    let mut model = PartialModel::default();
+    let parser = |input: ParseStream| {
+        model.parse(input);
+        Ok(())
+    };
+    // syn reports tokens left in a group the parser abandoned after an error: that error is
+    // already recorded, so syn's only matters when the parser finished without one.
+    if let Err(error) = parser.parse2(tokens)
+        && !model.stopped
+    {
+        model.stop(error);
+    }
+    model.finish()
+}
+
+/// A declaration as far as it parsed.
+#[derive(Default)]
+struct PartialModel {
+    documentation: Vec<String>,
+    attributes: Vec<Attribute>,
+    name: Option<Ident>,
+    registry_name: Option<LitStr>,
+    fields_keyword: Option<Span>,
+    fields: Vec<FieldDeclaration>,
+    parameters: Vec<ParameterDeclaration>,
+    items: Vec<Item>,
+    body: Option<Span>,
+    /// Every error so far, in source order.
+    errors: Vec<syn::Error>,
+    /// Whether an error stopped the parser.
+    stopped: bool,
+}
+
+impl PartialModel {
+    fn parse(&mut self, input: ParseStream) {
+        if let Err(error) = self.parse_declaration(input) {
+            self.stop(error);
+        }
+    }
+
+    fn stop(&mut self, error: syn::Error) {
+        self.errors.push(error);
+        self.stopped = true;
+    }
+
+    /// `attributes model Name as "name" { fields … ; parameters … ; items }`.
+    fn parse_declaration(&mut self, input: ParseStream) -> syn::Result<()> {
+        self.parse_attributes(input)?;
         input.parse::<keyword::model>()?;
         let name: Ident = input.parse()?;
+        self.name = Some(name.clone());
         if !input.peek(Token![as]) {
             return Err(input.error(format!(
                 "expected `as \"registry-name\"` after the model name `{name}`"
@@ -295,20 +393,54 @@ impl Parse for ModelDeclaration {
                 "expected the registry name as a string literal, e.g. `as \"my-model\"`",
             )
         })?;
+        self.registry_name = Some(registry_name);
         let content;
         let brace = syn::braced!(content in input);
-        let mut deferred_errors = Vec::new();
+        self.body = Some(brace.span.join());
+        self.parse_fields(&content)?;
+        self.parse_parameters(&content)?;
+        while !content.is_empty() {
+            self.parse_item(&content)?;
+        }
+        if !input.is_empty() {
+            return Err(input.error("unexpected tokens after the model body"));
+        }
+        Ok(())
+    }
 
-        let fields_keyword = content.span();
+    /// Outer attributes: doc comments become documentation lines, the rest is forwarded.
+    fn parse_attributes(&mut self, input: ParseStream) -> syn::Result<()> {
+        for attribute in input.call(Attribute::parse_outer)? {
+            if attribute.path().is_ident("doc")
+                && let syn::Meta::NameValue(syn::MetaNameValue {
+                    value:
+                        syn::Expr::Lit(syn::ExprLit {
+                            lit: syn::Lit::Str(text),
+                            ..
+                        }),
+                    ..
+                }) = &attribute.meta
+            {
+                let line = text.value();
+                let line = line.strip_prefix(' ').unwrap_or(&line).to_string();
+                self.documentation.push(line);
+                continue;
+            }
+            self.attributes.push(attribute);
+        }
+        Ok(())
+    }
+
+    /// `fields: u [displacement_x], w;`.
+    fn parse_fields(&mut self, content: ParseStream) -> syn::Result<()> {
+        self.fields_keyword = Some(content.span());
         content.parse::<keyword::fields>().map_err(|error| {
             syn::Error::new(
                 error.span(),
                 "expected `fields: a, b, ...;` as the first line of the model",
             )
         })?;
-        let fields_keyword_span = fields_keyword;
         content.parse::<Token![:]>()?;
-        let mut fields = Vec::new();
         while !content.peek(Token![;]) {
             let name = content.parse::<Ident>()?;
             let role = if content.peek(syn::token::Bracket) {
@@ -322,98 +454,130 @@ impl Parse for ModelDeclaration {
             } else {
                 None
             };
-            fields.push(FieldDeclaration { name, role });
-            if content.peek(Token![,]) {
-                content.parse::<Token![,]>()?;
-            } else {
+            self.fields.push(FieldDeclaration { name, role });
+            if !content.peek(Token![,]) {
                 break;
             }
+            content.parse::<Token![,]>()?;
         }
         content.parse::<Token![;]>()?;
+        Ok(())
+    }
 
-        let mut parameters = Vec::new();
-        if content.peek(keyword::parameters) {
-            content.parse::<keyword::parameters>()?;
-            content.parse::<Token![:]>()?;
-            while !content.peek(Token![;]) {
-                let name: Ident = content.parse()?;
-                let documentation = if content.peek(LitStr) {
-                    Some(content.parse::<LitStr>()?)
-                } else {
-                    None
-                };
-                parameters.push(ParameterDeclaration {
-                    name,
-                    documentation,
-                });
-                if content.peek(Token![,]) {
-                    content.parse::<Token![,]>()?;
-                } else {
-                    break;
-                }
-            }
-            content.parse::<Token![;]>()?;
+    /// `parameters: young "Young's modulus", poisson;` (optional).
+    fn parse_parameters(&mut self, content: ParseStream) -> syn::Result<()> {
+        if !content.peek(keyword::parameters) {
+            return Ok(());
         }
-
-        let mut items = Vec::new();
-        while !content.is_empty() {
-            if content.peek(Token![let]) {
-                content.parse::<Token![let]>()?;
-                let name: Ident = content.parse()?;
-                content.parse::<Token![=]>()?;
-                let value = parse_expression(&content, &mut deferred_errors)?;
-                content.parse::<Token![;]>()?;
-                items.push(Item::Let(LetDeclaration { name, value }));
-            } else if content.peek(keyword::energy) {
-                content.parse::<keyword::energy>()?;
-                let name: Ident = content.parse()?;
-                let mut quadrature = Quadrature::Full;
-                if content.peek(syn::token::Bracket) {
-                    let rule;
-                    bracketed!(rule in content);
-                    let rule_name: Ident = rule.parse()?;
-                    if !rule.is_empty() {
-                        return Err(rule.error("expected a single quadrature rule name"));
-                    }
-                    match rule_name.to_string().as_str() {
-                        "full" => quadrature = Quadrature::Full,
-                        "reduced" => quadrature = Quadrature::Reduced,
-                        other => deferred_errors.push(syn::Error::new(
-                            rule_name.span(),
-                            format!(
-                                "unknown quadrature rule `{other}`: expected `full` (3x3 Gauss) or `reduced` (2x2 Gauss)"
-                            ),
-                        )),
-                    }
-                }
-                content.parse::<Token![=]>()?;
-                let value = parse_expression(&content, &mut deferred_errors)?;
-                content.parse::<Token![;]>()?;
-                items.push(Item::Term(TermDeclaration {
-                    name,
-                    quadrature,
-                    value,
-                }));
-            } else if content.peek(keyword::parameters) {
-                return Err(content.error("`parameters:` must come right after `fields:`"));
+        content.parse::<keyword::parameters>()?;
+        content.parse::<Token![:]>()?;
+        while !content.peek(Token![;]) {
+            let name: Ident = content.parse()?;
+            let documentation = if content.peek(LitStr) {
+                Some(content.parse::<LitStr>()?)
             } else {
-                return Err(content.error("expected `let name = ...;` or `energy name = ...;`"));
+                None
+            };
+            self.parameters.push(ParameterDeclaration {
+                name,
+                documentation,
+            });
+            if !content.peek(Token![,]) {
+                break;
             }
+            content.parse::<Token![,]>()?;
         }
-        if !input.is_empty() {
-            return Err(input.error("unexpected tokens after the model body"));
+        content.parse::<Token![;]>()?;
+        Ok(())
+    }
+
+    /// `let name = value;` or `energy name [rule] = value;`.
+    fn parse_item(&mut self, content: ParseStream) -> syn::Result<()> {
+        if content.peek(Token![let]) {
+            content.parse::<Token![let]>()?;
+            let name: Ident = content.parse()?;
+            content.parse::<Token![=]>()?;
+            let value = parse_expression(content, &mut self.errors)?;
+            content.parse::<Token![;]>()?;
+            self.items.push(Item::Let(LetDeclaration { name, value }));
+        } else if content.peek(keyword::energy) {
+            content.parse::<keyword::energy>()?;
+            let name: Ident = content.parse()?;
+            let quadrature = self.parse_quadrature(content)?;
+            content.parse::<Token![=]>()?;
+            let value = parse_expression(content, &mut self.errors)?;
+            content.parse::<Token![;]>()?;
+            self.items.push(Item::Term(TermDeclaration {
+                name,
+                quadrature,
+                value,
+            }));
+        } else if content.peek(keyword::parameters) {
+            return Err(content.error("`parameters:` must come right after `fields:`"));
+        } else {
+            return Err(content.error("expected `let name = ...;` or `energy name = ...;`"));
         }
-        Ok(ModelDeclaration {
-            documentation,
-            attributes: other_attributes,
+        Ok(())
+    }
+
+    /// `[full]`, `[reduced]` or nothing (full); an unknown rule name is collected.
+    fn parse_quadrature(&mut self, content: ParseStream) -> syn::Result<Quadrature> {
+        if !content.peek(syn::token::Bracket) {
+            return Ok(Quadrature::Full);
+        }
+        let rule;
+        bracketed!(rule in content);
+        let rule_name: Ident = rule.parse()?;
+        if !rule.is_empty() {
+            return Err(rule.error("expected a single quadrature rule name"));
+        }
+        Ok(match rule_name.to_string().as_str() {
+            "full" => Quadrature::Full,
+            "reduced" => Quadrature::Reduced,
+            other => {
+                self.errors.push(syn::Error::new(
+                    rule_name.span(),
+                    format!(
+                        "unknown quadrature rule `{other}`: expected `full` (3x3 Gauss) or `reduced` (2x2 Gauss)"
+                    ),
+                ));
+                Quadrature::Full
+            }
+        })
+    }
+
+    /// The declaration, or what parsed of it.
+    fn finish(self) -> ParsedModel {
+        let Some(name) = self.name else {
+            return ParsedModel::Unnamed {
+                errors: self.errors,
+            };
+        };
+        if self.stopped {
+            let outline = ModelOutline {
+                documentation: self.documentation,
+                attributes: self.attributes,
+                name,
+                registry_name: self.registry_name.map(|name| name.value()),
+                parameters: self.parameters,
+            };
+            return ParsedModel::Partial {
+                outline,
+                errors: self.errors,
+            };
+        }
+        let parsed = "a declaration that parsed without stopping has every part";
+        ParsedModel::Complete(ModelDeclaration {
+            documentation: self.documentation,
+            attributes: self.attributes,
             name,
-            registry_name,
-            fields_keyword: fields_keyword_span,
-            fields,
-            parameters,
-            items,
-            body: brace.span.join(),
-            deferred_errors,
+            registry_name: self.registry_name.expect(parsed),
+            fields_keyword: self.fields_keyword.expect(parsed),
+            fields: self.fields,
+            parameters: self.parameters,
+            items: self.items,
+            body: self.body.expect(parsed),
+            deferred_errors: self.errors,
         })
     }
 }

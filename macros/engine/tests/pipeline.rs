@@ -591,3 +591,63 @@ fn taylor_programs_tape_only_what_recurrences_read() {
     assert_eq!(program.slots, 0);
     assert!(program.zero_in_prediction.iter().all(|&z| z));
 }
+
+#[test]
+fn a_stopping_parse_error_keeps_the_errors_collected_before_it() {
+    let parsed = wrinkle_energy::parse_model(quote! {
+        /// Broken late.
+        model Late as "late" {
+            fields: w;
+            parameters: k;
+            energy a [gauss] = k * w^65;
+            energy b = w.x^2
+            energy c = w^2;
+        }
+    });
+    let wrinkle_energy::ParsedModel::Partial { outline, errors } = parsed else {
+        panic!("expected a partial parse, got {parsed:?}");
+    };
+    let messages: Vec<String> = errors.iter().map(ToString::to_string).collect();
+    assert_eq!(messages.len(), 3, "{messages:#?}");
+    assert!(messages[0].contains("unknown quadrature rule `gauss`"));
+    assert!(messages[1].contains("exponent `65`"));
+    assert_eq!(messages[2], "expected `;`");
+    assert_eq!(outline.name, "Late");
+    assert_eq!(outline.registry_name.as_deref(), Some("late"));
+    assert_eq!(outline.parameters.len(), 1);
+}
+
+/// The items of an expansion that are not `compile_error!` invocations, and how many of those
+/// there are.
+fn expanded_items(tokens: TokenStream) -> (Vec<syn::Item>, usize) {
+    let file: syn::File =
+        syn::parse2(wrinkle_energy::expand(tokens)).expect("the expansion parses as Rust items");
+    let (errors, items): (Vec<syn::Item>, Vec<syn::Item>) =
+        file.items.into_iter().partition(|item| {
+            matches!(item, syn::Item::Macro(m)
+                if m.mac.path.segments.last().is_some_and(|s| s.ident == "compile_error"))
+        });
+    (items, errors.len())
+}
+
+#[test]
+fn errors_come_with_a_stand_in_for_the_model_when_its_name_parsed() {
+    // A validation error: the stand-in has the declared parameters.
+    let (items, errors) = expanded_items(quote! {
+        /// Misspelt.
+        model Misspelt as "misspelt" { fields: w; parameters: k, k; energy e = k * wx^2; }
+    });
+    assert_eq!(errors, 2, "unknown `wx` and the duplicate `k`");
+    assert_eq!(items.len(), 3, "struct, inherent impl, trait impl");
+    let syn::Item::Struct(definition) = &items[0] else {
+        panic!("expected the struct first");
+    };
+    assert_eq!(definition.ident, "Misspelt");
+    assert_eq!(definition.fields.len(), 1, "each parameter name once");
+    // A parse error after the name: still a stand-in.
+    let (items, errors) = expanded_items(quote! { model Nameless { fields: w; } });
+    assert_eq!((items.len(), errors), (3, 1));
+    // Before the name: only the error.
+    let (items, errors) = expanded_items(quote! { modl Typo as "typo" { fields: w; } });
+    assert_eq!((items.len(), errors), (0, 1));
+}
