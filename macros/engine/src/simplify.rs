@@ -2,7 +2,7 @@
 //! entries, tangent entries) are simplified together in one e-graph, extracted with a
 //! weighted operation count and re-hash-consed so common sub-expressions are shared.
 
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 use std::fmt;
 use std::str::FromStr;
 use std::time::Duration;
@@ -384,7 +384,9 @@ fn own_cost(egraph: &EGraph<Symbolic, ConstantFolding>, class: Id, node: &Symbol
 /// children need their own class (cycles) are skipped. Falls back to the tree-cost
 /// [`Extractor`] for any class left without a choice.
 fn dag_extract(egraph: &EGraph<Symbolic, ConstantFolding>) -> HashMap<Id, Symbolic> {
-    type CostSet = std::rc::Rc<HashMap<Id, f64>>;
+    // Ordered, so that a set's total is summed in the same order in every process (a
+    // `HashMap`'s order is seeded at random).
+    type CostSet = std::rc::Rc<BTreeMap<Id, f64>>;
     let mut classes: Vec<Id> = egraph.classes().map(|class| class.id).collect();
     classes.sort_unstable();
     let mut best: HashMap<Id, (f64, CostSet, Symbolic)> = HashMap::new();
@@ -401,9 +403,9 @@ fn dag_extract(egraph: &EGraph<Symbolic, ConstantFolding>) -> HashMap<Id, Symbol
                 if children.iter().any(|set| set.contains_key(&class)) {
                     continue;
                 }
-                let mut set: HashMap<Id, f64> = match children.first() {
+                let mut set: BTreeMap<Id, f64> = match children.first() {
                     Some(first) => (***first).clone(),
-                    None => HashMap::new(),
+                    None => BTreeMap::new(),
                 };
                 for child in children.iter().skip(1) {
                     for (&id, &cost) in child.iter() {
