@@ -9,6 +9,11 @@
 //! For every term the generated code provides the triad energy → residual
 //! $`r_i = \partial\psi_t/\partial j_i`$ → tangent $`k_{ij} = \partial^2\psi_t/\partial j_i\partial j_j`$,
 //! all generic over [`Scalar`].
+//!
+//! The vocabulary the DSL engine writes into a [`ModelSpec`] — [`FieldRole`], [`Derivative`],
+//! [`JetEntry`] — is defined once in the `wrinkle-contract` crate, which the engine depends on
+//! too, and re-exported here. This module owns the sizes every kernel call fits in
+//! ([`MAX_FIELDS`], [`MAX_JET`]); assembly imports them from here.
 
 use crate::scalar::Scalar;
 use crate::series::Series;

@@ -9,11 +9,21 @@
 //!    constant folding and $`0`/$`1` identities;
 //! 3. **differentiate** ([`kernel`]): residual $`r_i = \partial\psi_t/\partial j_i`$ and
 //!    tangent $`k_{ij} = \partial r_i/\partial j_j`$, $`i \le j`$, by memoised recursion;
-//! 4. **simplify** ([`simplify`]): all outputs of a term together in one bounded `egg`
-//!    e-graph, extraction by weighted operation count, re-hash-consing for sharing;
-//! 5. **generate** ([`codegen`]): straight-line kernels generic over the runtime `Scalar`, and
-//!    ([`taylor`]) Taylor-mode kernels that extend the residual's Taylor coefficients one order
-//!    at a time from a per-point tape (the ANM's right-hand sides).
+//! 4. **simplify** ([`simplify`]): all outputs of a term together in one `egg` e-graph bounded
+//!    by size (never by time), extraction by weighted operation count, re-hash-consing for
+//!    sharing;
+//! 5. **generate** ([`codegen`]): straight-line kernels generic over the runtime `Scalar`
+//!    (written by the private `kernel_writer`), and ([`taylor`]) Taylor-mode kernels that
+//!    extend the residual's Taylor coefficients one order at a time from a per-point tape (the
+//!    ANM's right-hand sides).
+//!
+//! Imports run one way: [`syntax`] and [`graph`] import no other module; [`semantic`] imports
+//! both, [`simplify`] the graph, [`kernel`] these four, `kernel_writer` the graph and kernel,
+//! [`taylor`] the graph and kernel_writer, [`codegen`] syntax, kernel, kernel_writer and
+//! taylor. Field roles,
+//! derivatives and jet entries come from the `wrinkle-contract` crate the runtime shares. On errors [`expand`] returns them with a stand-in for the model
+//! ([`codegen::generate_stub`]). The output is a function of the input tokens alone
+//! (`docs/dsl.md`, "Determinism").
 //!
 //! The crate is a plain library; the `wrinkle-macros` proc-macro crate only calls
 //! [`expand`].
