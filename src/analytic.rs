@@ -14,8 +14,8 @@ use serde_json::{Value, json};
 use std::fmt::Write as _;
 
 /// The only registered model whose linearised envelope equation is (32), i.e. that has the
-/// closed forms of THEORY.md §8.
-pub const CLOSED_FORM_MODEL: &str = "reference-envelope";
+/// closed forms of THEORY.md §8: the registry's reference model (THEORY.md §4).
+pub const CLOSED_FORM_MODEL: &str = wrinkle_models::REFERENCE_MODEL;
 
 /// Load ratios $`\lambda/\lambda_c`$ of the amplitude curve: $`1, 1.05, \ldots, 2`$.
 pub const AMPLITUDE_CURVE_POINTS: usize = 21;

@@ -41,8 +41,8 @@ use serde_json::json;
 use std::path::Path;
 use std::time::Instant;
 
-/// Model benchmarked when `--models` is not given.
-pub const DEFAULT_MODEL: &str = "reference-envelope";
+/// Model benchmarked when `--models` is not given: the registry's reference model.
+pub const DEFAULT_MODEL: &str = wrinkle_models::REFERENCE_MODEL;
 /// Physical amplitude $`a/h`$ at which the load is compared.
 pub const AMPLITUDE_LEVEL: f64 = 1.0;
 /// Load ratio $`\lambda/\lambda_c`$ at which the amplitude is compared.

@@ -5,7 +5,7 @@
 use crate::error::Error;
 use crate::run::{RunOutcome, RunReport};
 use crate::scene::Scene;
-use crate::threshold::{PriorThreshold, Threshold};
+use crate::threshold::{PriorThreshold, Threshold, ThresholdOptions};
 use std::path::Path;
 
 /// Linear buckling analysis of a scene (`wrinkle buckle`); progress on standard error unless
@@ -26,7 +26,12 @@ pub fn run(
     quiet: bool,
     prior: Option<&PriorThreshold>,
 ) -> Result<RunReport, Error> {
-    let report = crate::run::run_reusing(scene, output_directory, quiet, prior)?;
+    let options = ThresholdOptions {
+        quiet,
+        prior,
+        wavenumber_model: None,
+    };
+    let report = crate::run::run_with(scene, output_directory, &options)?;
     // The summary table goes to stdout whatever the outcome (a closed stdout is not an error).
     {
         use std::io::Write;

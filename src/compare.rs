@@ -13,9 +13,9 @@ use crate::output::{
     PathPoint, Quantity, Response, ResponsePoint, plot_comparison, write_bytes_atomically,
     write_json,
 };
-use crate::run::{RunOutcome, run};
+use crate::run::{RunOutcome, run_with};
 use crate::scene::{LoadKind, Scene};
-use crate::threshold::closed_form_threshold;
+use crate::threshold::{ThresholdOptions, WavenumberModel, closed_form_threshold};
 use serde_json::json;
 use std::path::Path;
 
@@ -117,6 +117,13 @@ pub fn compare(
         LoadKind::Biaxial => Quantity::biaxial_load(),
         LoadKind::Strip => Quantity::end_displacement(),
     };
+    // One wavenumber model for every model that needs it: its threshold is computed once.
+    let wavenumber_model = WavenumberModel::for_scene(scene)?;
+    let options = ThresholdOptions {
+        quiet,
+        prior: None,
+        wavenumber_model: Some(&wavenumber_model),
+    };
     let mut rows = Vec::new();
     let mut responses = Vec::new();
     for model in models {
@@ -129,7 +136,7 @@ pub fn compare(
         }
         one.validate()?;
         let out = directory.join(model);
-        match run(&one, &out, quiet) {
+        match run_with(&one, &out, &options) {
             Ok(report) => {
                 rows.push(row_of(model, &report.summary, &report.outcome));
                 responses.extend(response_of(model, &report.summary, &load));

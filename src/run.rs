@@ -17,7 +17,7 @@ pub use crate::results::{RunOutcome, RunReport, Snap, Trace};
 use crate::scene::{Imperfection, LoadKind, PathMethod, Scene, Wavenumber};
 use crate::setup::{build_problem, configure_model, layout_of, unknown_model};
 use crate::threshold::{
-    PriorThreshold, Threshold, analyse, closed_form_threshold, find_threshold_reusing,
+    Threshold, ThresholdOptions, analyse, closed_form_threshold, find_threshold_with,
 };
 use std::path::Path;
 use std::time::Instant;
@@ -38,22 +38,27 @@ use wrinkle_runtime::solve::riks::{AmplitudeControl, RiksOptions};
 /// Path following of a scene, writing its outputs into `output_directory`. Progress goes to
 /// standard error unless `quiet`.
 pub fn run(scene: &Scene, output_directory: &Path, quiet: bool) -> Result<RunReport, Error> {
-    run_reusing(scene, output_directory, quiet, None)
+    let options = ThresholdOptions {
+        quiet,
+        ..ThresholdOptions::default()
+    };
+    run_with(scene, output_directory, &options)
 }
 
-/// [`run`], with the wavenumber search replaced by one analysis at the wavenumber of an earlier
-/// threshold of the same scene when `prior` is given ([`PriorThreshold`], `--threshold FILE`).
-pub fn run_reusing(
+/// [`run`] with the options of its threshold: the wavenumber search replaced by one analysis at
+/// the wavenumber of an earlier threshold of the same scene ([`ThresholdOptions::prior`],
+/// `--threshold FILE`), a wavenumber model shared with other runs
+/// ([`ThresholdOptions::wavenumber_model`], `wrinkle compare`). `options.quiet` silences the
+/// path's progress too.
+pub fn run_with(
     scene: &Scene,
     output_directory: &Path,
-    quiet: bool,
-    prior: Option<&PriorThreshold>,
+    options: &ThresholdOptions,
 ) -> Result<RunReport, Error> {
     let visitor = RunVisitor {
         scene,
         directory: output_directory,
-        quiet,
-        prior,
+        options,
     };
     with_model(&scene.model.name, visitor).unwrap_or_else(|| Err(unknown_model(scene)))
 }
@@ -61,8 +66,7 @@ pub fn run_reusing(
 struct RunVisitor<'a> {
     scene: &'a Scene,
     directory: &'a Path,
-    quiet: bool,
-    prior: Option<&'a PriorThreshold>,
+    options: &'a ThresholdOptions<'a>,
 }
 
 impl ModelVisitor for RunVisitor<'_> {
@@ -70,6 +74,7 @@ impl ModelVisitor for RunVisitor<'_> {
 
     fn visit<M: EnergyModel>(self, mut model: M) -> Self::Output {
         let scene = self.scene;
+        let quiet = self.options.quiet;
         let begin = Instant::now();
         // Without a reset the mark would be the process's, not this run's (a bench runs many).
         let peak_tracked = crate::memory::reset_peak();
@@ -81,18 +86,10 @@ impl ModelVisitor for RunVisitor<'_> {
         let layout = layout_of::<M>(scene)?;
         let mut problem = build_problem(scene, model)?;
         let mut factor = analyse(&problem)?;
-        let threshold =
-            find_threshold_reusing(scene, &mut problem, &mut factor, self.quiet, self.prior)?;
+        let threshold = find_threshold_with(scene, &mut problem, &mut factor, self.options)?;
         let imperfection = add_imperfection(scene, &mut problem, &layout, &threshold)?;
         let _phase = crate::interrupt::PathPhase::enter();
-        let trace = trace_path(
-            scene,
-            &problem,
-            &mut factor,
-            &layout,
-            &threshold,
-            self.quiet,
-        )?;
+        let trace = trace_path(scene, &problem, &mut factor, &layout, &threshold, quiet)?;
         let context = crate::run_outputs::RunContext {
             scene,
             spec: M::SPEC,
@@ -636,7 +633,7 @@ mod tests {
             let mut problem = build_problem(scene, model).unwrap();
             let mut factor = analyse(&problem).unwrap();
             let threshold =
-                find_threshold_reusing(scene, &mut problem, &mut factor, true, None).unwrap();
+                crate::threshold::find_threshold(scene, &mut problem, &mut factor, true).unwrap();
             add_imperfection(scene, &mut problem, &layout, &threshold).unwrap();
             let critical = threshold.critical_load();
             let outcomes = self

@@ -17,18 +17,22 @@
 //! bracketed there, or the one found lies at the edge of the ±10 % bracket (a model whose
 //! $`\lambda_c(Q)`$ is not the one eq. (42) solves), the two-level search runs as above, its
 //! half mesh starting locally from the closed form ±3 % (`closed_form_start`) and falling back
-//! to the scan: the closed form decides where the search starts, not what it finds. A model
-//! whose $`\lambda_c(Q)`$ keeps falling to the end of the range has no wavelength selection of its
-//! own: its $`Q`$ is then taken from the reference envelope's minimisation on the same scene, and a
-//! note says so. A model whose envelope has no gradient at all (the pure membrane, threshold
-//! $`DQ^2`$) is known to be such a model and skips its own scan. A complex envelope (a model with a
-//! phase) takes the reference envelope's $`Q`$ as its carrier too: its phase moves the local
-//! wavenumber freely and its bending is a second-order expansion about $`Q`$, so its own
-//! $`\lambda_c(Q)`$ is meaningless away from the reference optimum (measured: a spurious minimum at
-//! $`Q = 0.099`$/mm, $`\lambda_c`$ half the plate's, on example 1).
+//! to the scan: the closed form decides where the search starts, not what it finds.
+//!
+//! **Where the wavenumber comes from** follows from the model's capability, derived from its
+//! roles and jet (`wrinkle_runtime::wavelength`), never from its name: a model that selects its
+//! own wavelength is searched as above; a model that does not (an envelope without gradient, the
+//! pure membrane; a complex envelope, whose phase moves the local wavenumber freely) takes the
+//! minimiser of the scene's `model.wavenumber_model` (default the registry's reference
+//! envelope), and so does a searched model whose $`\lambda_c(Q)`$ keeps falling to the end of the
+//! range — a note says so each time; a plate has no wavenumber. The wavenumber model's threshold
+//! is computed at most once per run, when first needed ([`WavenumberModel`]); it also gives the
+//! shift of a second buckling attempt when the first, about $`\lambda = 0`$, fails. When the
+//! scene's model *is* the wavenumber model there is none: nothing falls back, and a minimum at
+//! the long-wavelength end gets its own note.
 //!
 //! **Reuse.** `wrinkle run --threshold FILE` replaces the search by one analysis at the $`Q`$ of
-//! an earlier threshold of the same scene ([`PriorThreshold`], [`find_threshold_reusing`]).
+//! an earlier threshold of the same scene ([`PriorThreshold`], [`ThresholdOptions::prior`]).
 //!
 //! **Validity checks** (warnings in the summary, exit code 4 unless the scene accepts them):
 //! * scale separation of envelope models: $`\ell \le L_\min /`$ [`MIN_WAVES_PER_DOMAIN`] and
@@ -42,8 +46,10 @@
 //!   [`WELL_POSEDNESS_LOAD_RATIO`]$`\,\lambda_c`$ on the fundamental branch.
 
 mod reuse;
+mod wavenumber_model;
 
 pub use reuse::{PriorThreshold, THRESHOLD_SECTIONS};
+pub use wavenumber_model::{CarrierThreshold, WAVENUMBER_MODEL_KEY, WavenumberModel};
 
 use crate::error::Error;
 use crate::output::{ProgressSink, SearchProgress};
@@ -59,9 +65,10 @@ use wrinkle_runtime::problem::Problem;
 use wrinkle_runtime::solve::buckling::{LinearBuckling, LinearBucklingOptions, linear_buckling};
 use wrinkle_runtime::solve::ellipticity::EllipticityReport;
 use wrinkle_runtime::solve::wavenumber::{
-    LOCAL_SHIFT, LocalGuess, WavenumberEvaluation, WavenumberSearchOptions,
+    LOCAL_SHIFT, LocalGuess, WavenumberEvaluation, WavenumberSearch, WavenumberSearchOptions,
     ellipticity_at_critical_load, minimise_critical_load, set_model_parameter,
 };
+use wrinkle_runtime::wavelength::{CarriedBecause, WAVENUMBER_PARAMETER, WavelengthSelection};
 
 /// Shortest wavelength an envelope model accepts, in thicknesses.
 pub const MIN_WAVELENGTH_OVER_THICKNESS: f64 = 20.0;
@@ -98,7 +105,8 @@ pub struct Threshold {
     pub wavenumber: Option<f64>,
     /// Wavelength (mm): $`2\pi/Q`$, or read from the plate's mode.
     pub wavelength: Option<f64>,
-    /// `"fixed"`, `"auto"` (minimised), `"auto (reference-envelope)"` or `"mode"` (plate).
+    /// `"fixed"`, `"auto"` (minimised), `"auto (MODEL)"` (the minimiser of `MODEL`, the scene's
+    /// `model.wavenumber_model`), `"auto (reused)"` or `"mode"` (plate).
     pub wavenumber_source: String,
     /// Linear buckling analyses done.
     pub evaluations: usize,
@@ -144,6 +152,20 @@ pub fn wavenumber_range(scene: &Scene) -> (f64, f64) {
     (low, high.max(4.0 * low))
 }
 
+/// How a threshold is found, besides its scene.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ThresholdOptions<'a> {
+    /// No progress on standard error.
+    pub quiet: bool,
+    /// The wavenumber of an earlier threshold of the same scene, reused instead of the search
+    /// (`--threshold FILE`, [`PriorThreshold`]).
+    pub prior: Option<&'a PriorThreshold>,
+    /// A wavenumber model shared with other runs (`wrinkle compare`), used when it computes the
+    /// same threshold as this scene's own ([`WavenumberModel::same_as`]); otherwise the scene's
+    /// is made here.
+    pub wavenumber_model: Option<&'a WavenumberModel>,
+}
+
 /// Finds the threshold of `problem` (built from `scene`, parameters set). For an envelope
 /// model with `wavenumber = "auto"` the model in `problem` is left at the minimiser.
 pub fn find_threshold<M: EnergyModel>(
@@ -152,109 +174,57 @@ pub fn find_threshold<M: EnergyModel>(
     factor: &mut SparseFactorization,
     quiet: bool,
 ) -> Result<Threshold, Error> {
-    find_threshold_reusing(scene, problem, factor, quiet, None)
+    let options = ThresholdOptions {
+        quiet,
+        ..ThresholdOptions::default()
+    };
+    find_threshold_with(scene, problem, factor, &options)
 }
 
-/// [`find_threshold`], reusing the wavenumber of an earlier threshold of the same scene when
-/// `prior` is given (the search is replaced by one analysis at that wavenumber; see
-/// [`PriorThreshold`]).
-pub fn find_threshold_reusing<M: EnergyModel>(
+/// [`find_threshold`] with its [`ThresholdOptions`]: an earlier threshold's wavenumber reused,
+/// a wavenumber model shared with other runs.
+///
+/// What the wavenumber is follows from the model's capability
+/// ([`ModelSpec::wavelength_selection`](wrinkle_runtime::ModelSpec::wavelength_selection)) and
+/// the scene: a fixed `model.wavenumber`; the minimiser of $`\lambda_c(Q)`$ for a model that
+/// selects its own; the minimiser of `model.wavenumber_model` for one that does not; none for
+/// a model that resolves its wrinkles on the mesh.
+pub fn find_threshold_with<M: EnergyModel>(
     scene: &Scene,
     problem: &mut Problem<M>,
     factor: &mut SparseFactorization,
-    quiet: bool,
-    prior: Option<&PriorThreshold>,
+    options: &ThresholdOptions,
 ) -> Result<Threshold, Error> {
     let start = std::time::Instant::now();
     let layout = layout_of::<M>(scene)?;
     require_free_primary_dofs(scene, problem, &layout, M::SPEC.fields[layout.primary])?;
-    let has_wavenumber = M::SPEC.parameter_index("wavenumber").is_some();
-    let mut notes = Vec::new();
-    if !has_wavenumber && matches!(scene.model.wavenumber, Wavenumber::Fixed(_)) {
-        notes.push(format!(
-            "model `{}` has no wavenumber: `model.wavenumber` is ignored (its wrinkles are resolved by the mesh)",
-            M::SPEC.name
-        ));
-    }
-    let reference_load;
-    let (buckling, ellipticity, q, source, search) = match (
-        scene.model.wavenumber,
-        has_wavenumber,
-        prior,
-    ) {
-        (Wavenumber::Auto, true, Some(prior)) => {
-            let q = prior.wavenumber;
-            let (buckling, ellipticity, shift) = buckle_at_wavenumber(
-                scene,
-                problem,
-                factor,
-                quiet,
-                &mut notes,
-                q,
-                Some(prior.critical_load),
-            )?;
-            reference_load = shift;
-            notes.push(format!(
-                "Q = {q:.9e} 1/mm is reused from {} (the minimiser found there for this scene): one analysis at that Q instead of the wavenumber search",
-                prior.file
-            ));
-            (
-                buckling,
-                ellipticity,
-                Some(q),
-                "auto (reused)".into(),
-                Vec::new(),
-            )
-        }
-        (Wavenumber::Auto, true, _)
-            if has_phase(M::SPEC) || !M::SPEC.needs_gradient(layout.primary) =>
-        {
-            let (buckling, ellipticity, q, shift) =
-                reference_carrier(scene, problem, factor, quiet, &mut notes)?;
-            reference_load = shift;
-            (
-                buckling,
-                ellipticity,
-                Some(q),
-                "auto (reference-envelope)".into(),
-                Vec::new(),
-            )
-        }
-        (Wavenumber::Auto, true, _) => {
-            let (search, source) = search_wavenumber(scene, problem, factor, quiet, &mut notes)?;
-            reference_load = search.4;
-            (search.0, search.1, Some(search.2), source, search.3)
-        }
-        (Wavenumber::Fixed(q), true, _) => {
-            // Shifted about eq. (42) at this Q where it applies (`closed_form_load_at`).
-            let guess = closed_form_load_at(scene, q);
-            let (buckling, ellipticity, shift) =
-                buckle_at_wavenumber(scene, problem, factor, quiet, &mut notes, q, guess)?;
-            reference_load = shift;
-            (buckling, ellipticity, Some(q), "fixed".into(), Vec::new())
-        }
-        _ => {
-            let (buckling, shift) = robust_buckling(scene, problem, factor, quiet, &mut notes)?;
-            reference_load = shift;
-            let ellipticity = ellipticity_at_critical_load(problem, &buckling, reference_load);
-            (buckling, ellipticity, None, "mode".into(), Vec::new())
-        }
+    let own = WavenumberModel::of(scene)?;
+    let wavenumber_model = own.as_ref().map(|own| match options.wavenumber_model {
+        Some(shared) if shared.same_as(own) => shared,
+        _ => own,
+    });
+    let mut steps = ThresholdSteps {
+        scene,
+        quiet: options.quiet,
+        wavenumber_model,
+        notes: Vec::new(),
     };
-    let wavelength = match q {
+    let found = steps.critical_point(problem, factor, options.prior)?;
+    let wavelength = match found.wavenumber {
         Some(q) => Some(2.0 * PI / q),
-        None => mode_wavelength(scene, problem, &layout, &buckling),
+        None => mode_wavelength(scene, problem, &layout, &found.buckling),
     };
     let mut threshold = Threshold {
         model: M::SPEC.name,
-        evaluations: search.len().max(1),
-        buckling,
-        ellipticity,
-        reference_load,
-        wavenumber: q,
+        evaluations: found.search.len().max(1),
+        buckling: found.buckling,
+        ellipticity: found.ellipticity,
+        reference_load: found.reference_load,
+        wavenumber: found.wavenumber,
         wavelength,
-        wavenumber_source: source,
-        search,
-        notes,
+        wavenumber_source: found.source,
+        search: found.search,
+        notes: steps.notes,
         warnings: Vec::new(),
         dofs: problem.free_count(),
         seconds: 0.0,
@@ -263,7 +233,7 @@ pub fn find_threshold_reusing<M: EnergyModel>(
     threshold.warnings.extend(well_posedness_beyond(
         problem,
         &threshold.buckling,
-        reference_load,
+        threshold.reference_load,
     ));
     threshold.seconds = start.elapsed().as_secs_f64();
     Ok(threshold)
@@ -296,73 +266,197 @@ fn require_free_primary_dofs<M: EnergyModel>(
     ))
 }
 
-/// Whether the model's envelope has a phase (a field of role `envelope_imaginary`).
-fn has_phase(spec: &wrinkle_runtime::ModelSpec) -> bool {
-    spec.field_with_role(wrinkle_runtime::FieldRole::EnvelopeImaginary)
-        .is_some()
+/// The linear buckling a threshold settles on, before its validity checks.
+struct CriticalPoint {
+    /// Critical loads, modes, pre-buckling state and rate.
+    buckling: LinearBuckling,
+    /// Strong ellipticity at the critical load.
+    ellipticity: EllipticityReport,
+    /// Load the analysis linearised about.
+    reference_load: f64,
+    /// Wavenumber $`Q`$ of an envelope model.
+    wavenumber: Option<f64>,
+    /// Where $`Q`$ came from ([`Threshold::wavenumber_source`]).
+    source: String,
+    /// The wavenumber search, when there was one.
+    search: Vec<WavenumberEvaluation>,
 }
 
-/// The reference envelope's $`Q`$ as the carrier of a model that has no wavelength selection of
-/// its own (no envelope gradient) or a free phase, and the linear buckling at it.
-fn reference_carrier<M: EnergyModel>(
-    scene: &Scene,
-    problem: &mut Problem<M>,
-    factor: &mut SparseFactorization,
+/// The steps of one threshold: its scene, whether progress is shown, the wavenumber model
+/// (`None` when the scene's model is that model) and the notes collected for the user.
+struct ThresholdSteps<'a> {
+    scene: &'a Scene,
     quiet: bool,
-    notes: &mut Vec<String>,
-) -> Result<(LinearBuckling, EllipticityReport, f64, f64), Error> {
-    let (q, load) = reference_threshold(scene, quiet)?;
-    notes.push(if has_phase(M::SPEC) {
-        format!(
-            "model `{}` has a phase: its local wavenumber Q + ∂arg(w1) is free, and its bending (a second-order expansion about Q) is only valid near the carrier Q, so λ_c(Q) has no meaningful minimum of its own; Q = {q:.6e} 1/mm is the reference-envelope minimiser on the same scene",
-            M::SPEC.name
-        )
-    } else {
-        format!(
-            "model `{}` has no gradient of its envelope, hence no wavelength selection of its own (its threshold D Q² falls with Q); Q = {q:.6e} 1/mm is the reference-envelope minimiser on the same scene",
-            M::SPEC.name
-        )
-    });
-    // The reference envelope's threshold is within a fraction of a per cent of this model's
-    // at the same Q (example 1: 8.9521e-2 against 8.9519e-2 for the complex envelope): the
-    // analysis is shifted about it.
-    let (buckling, ellipticity, shift) =
-        buckle_at_wavenumber(scene, problem, factor, quiet, notes, q, Some(load))?;
-    Ok((buckling, ellipticity, q, shift))
+    wavenumber_model: Option<&'a WavenumberModel>,
+    notes: Vec<String>,
 }
 
-/// Linear buckling of `problem` with its wavenumber set to `q` ([`robust_buckling`]), the
-/// ellipticity at the threshold, and the load the analysis linearised about. With a guess of
-/// the critical load the analysis is first shifted to [`LOCAL_SHIFT`] times the guess (one
-/// factorisation and a few Lanczos iterations when the tangent there is still positive
-/// definite, so that no critical load lies below the shift), and falls back to the unshifted
-/// analysis otherwise.
-fn buckle_at_wavenumber<M: EnergyModel>(
-    scene: &Scene,
-    problem: &mut Problem<M>,
-    factor: &mut SparseFactorization,
-    quiet: bool,
-    notes: &mut Vec<String>,
-    q: f64,
-    load_guess: Option<f64>,
-) -> Result<(LinearBuckling, EllipticityReport, f64), Error> {
-    set_model_parameter(problem, "wavenumber", q).map_err(|e| Error::Solver(e.to_string()))?;
-    if let Some(guess) = load_guess {
-        let shift = LOCAL_SHIFT * guess;
-        let options = LinearBucklingOptions {
-            reference_load: shift,
-            ..LinearBucklingOptions::default()
-        };
-        if let Ok(buckling) = linear_buckling(problem, factor, &options)
-            && factor.negative_pivots() == Some(0)
-        {
-            let ellipticity = ellipticity_at_critical_load(problem, &buckling, shift);
-            return Ok((buckling, ellipticity, shift));
+impl ThresholdSteps<'_> {
+    /// The critical point by the model's capability and the scene's `model.wavenumber`.
+    fn critical_point<M: EnergyModel>(
+        &mut self,
+        problem: &mut Problem<M>,
+        factor: &mut SparseFactorization,
+        prior: Option<&PriorThreshold>,
+    ) -> Result<CriticalPoint, Error> {
+        let wavenumber = self.scene.model.wavenumber;
+        match (M::SPEC.wavelength_selection(), wavenumber, prior) {
+            (WavelengthSelection::ResolvedByMesh, _, _) => self.resolved_by_mesh(problem, factor),
+            (_, Wavenumber::Fixed(q), _) => {
+                // Shifted about eq. (42) at this Q where it applies (`closed_form_load_at`).
+                let guess = closed_form_load_at(self.scene, q);
+                let (buckling, ellipticity, shift) =
+                    self.buckle_at_wavenumber(problem, factor, q, guess)?;
+                Ok(critical_point(buckling, ellipticity, shift, q, "fixed"))
+            }
+            (_, Wavenumber::Auto, Some(prior)) => self.reused(problem, factor, prior),
+            (WavelengthSelection::Carried(because), Wavenumber::Auto, None) => {
+                self.carried(problem, factor, because)
+            }
+            (WavelengthSelection::OwnMinimum, Wavenumber::Auto, None) => {
+                self.search_wavenumber(problem, factor)
+            }
         }
     }
-    let (buckling, shift) = robust_buckling(scene, problem, factor, quiet, notes)?;
-    let ellipticity = ellipticity_at_critical_load(problem, &buckling, shift);
-    Ok((buckling, ellipticity, shift))
+
+    /// A plate: no wavenumber; its wavelength is read from the mode.
+    fn resolved_by_mesh<M: EnergyModel>(
+        &mut self,
+        problem: &mut Problem<M>,
+        factor: &mut SparseFactorization,
+    ) -> Result<CriticalPoint, Error> {
+        if matches!(self.scene.model.wavenumber, Wavenumber::Fixed(_)) {
+            self.notes.push(format!(
+                "model `{}` has no wavenumber: `model.wavenumber` is ignored (its wrinkles are resolved by the mesh)",
+                M::SPEC.name
+            ));
+        }
+        let (buckling, reference_load) = self.robust_buckling(problem, factor)?;
+        let ellipticity = ellipticity_at_critical_load(problem, &buckling, reference_load);
+        Ok(CriticalPoint {
+            buckling,
+            ellipticity,
+            reference_load,
+            wavenumber: None,
+            source: "mode".into(),
+            search: Vec::new(),
+        })
+    }
+
+    /// One analysis at the wavenumber of an earlier threshold of the same scene.
+    fn reused<M: EnergyModel>(
+        &mut self,
+        problem: &mut Problem<M>,
+        factor: &mut SparseFactorization,
+        prior: &PriorThreshold,
+    ) -> Result<CriticalPoint, Error> {
+        let q = prior.wavenumber;
+        let (buckling, ellipticity, shift) =
+            self.buckle_at_wavenumber(problem, factor, q, Some(prior.critical_load))?;
+        self.notes.push(format!(
+            "Q = {q:.9e} 1/mm is reused from {} (the minimiser found there for this scene): one analysis at that Q instead of the wavenumber search",
+            prior.file
+        ));
+        Ok(critical_point(
+            buckling,
+            ellipticity,
+            shift,
+            q,
+            "auto (reused)",
+        ))
+    }
+
+    /// The wavenumber model and its threshold, computed once; an error when there is none
+    /// (the scene's model is the wavenumber model, which selects its own wavelength).
+    fn carrier(&self) -> Result<(&str, CarrierThreshold), Error> {
+        let model = self.wavenumber_model.ok_or_else(|| {
+            Error::Solver(format!(
+                "model `{}` is its own `model.wavenumber_model` and does not select its own wavelength",
+                self.scene.model.name
+            ))
+        })?;
+        Ok((model.name(), model.threshold(self.quiet)?))
+    }
+
+    /// The wavenumber model's $`Q`$ as the carrier of a model that has no wavelength selection
+    /// of its own (no envelope gradient) or a free phase, and the linear buckling at it.
+    fn carried<M: EnergyModel>(
+        &mut self,
+        problem: &mut Problem<M>,
+        factor: &mut SparseFactorization,
+        because: CarriedBecause,
+    ) -> Result<CriticalPoint, Error> {
+        let (name, carrier) = self.carrier()?;
+        let q = carrier.wavenumber;
+        let source = format!("auto ({name})");
+        self.notes.push(match because {
+            CarriedBecause::Phase => format!(
+                "model `{}` has a phase: its local wavenumber Q + ∂arg(w1) is free, and its bending (a second-order expansion about Q) is only valid near the carrier Q, so λ_c(Q) has no meaningful minimum of its own; Q = {q:.6e} 1/mm is the {name} minimiser on the same scene",
+                M::SPEC.name
+            ),
+            CarriedBecause::NoEnvelopeGradient => format!(
+                "model `{}` has no gradient of its envelope, hence no wavelength selection of its own (its threshold D Q² falls with Q); Q = {q:.6e} 1/mm is the {name} minimiser on the same scene",
+                M::SPEC.name
+            ),
+        });
+        // The wavenumber model's threshold is within a fraction of a per cent of this model's
+        // at the same Q (example 1: 8.9521e-2 against 8.9519e-2 for the complex envelope): the
+        // analysis is shifted about it.
+        let (buckling, ellipticity, shift) =
+            self.buckle_at_wavenumber(problem, factor, q, Some(carrier.critical_load))?;
+        Ok(critical_point(buckling, ellipticity, shift, q, &source))
+    }
+
+    /// Linear buckling of `problem` with its wavenumber set to `q` ([`Self::robust_buckling`]),
+    /// the ellipticity at the threshold, and the load the analysis linearised about. With a
+    /// guess of the critical load the analysis is first shifted to [`LOCAL_SHIFT`] times the
+    /// guess (one factorisation and a few Lanczos iterations when the tangent there is still
+    /// positive definite, so that no critical load lies below the shift), and falls back to the
+    /// unshifted analysis otherwise.
+    fn buckle_at_wavenumber<M: EnergyModel>(
+        &mut self,
+        problem: &mut Problem<M>,
+        factor: &mut SparseFactorization,
+        q: f64,
+        load_guess: Option<f64>,
+    ) -> Result<(LinearBuckling, EllipticityReport, f64), Error> {
+        set_model_parameter(problem, WAVENUMBER_PARAMETER, q)
+            .map_err(|e| Error::Solver(e.to_string()))?;
+        if let Some(guess) = load_guess {
+            let shift = LOCAL_SHIFT * guess;
+            let options = LinearBucklingOptions {
+                reference_load: shift,
+                ..LinearBucklingOptions::default()
+            };
+            if let Ok(buckling) = linear_buckling(problem, factor, &options)
+                && factor.negative_pivots() == Some(0)
+            {
+                let ellipticity = ellipticity_at_critical_load(problem, &buckling, shift);
+                return Ok((buckling, ellipticity, shift));
+            }
+        }
+        let (buckling, shift) = self.robust_buckling(problem, factor)?;
+        let ellipticity = ellipticity_at_critical_load(problem, &buckling, shift);
+        Ok((buckling, ellipticity, shift))
+    }
+}
+
+/// A [`CriticalPoint`] at the wavenumber `q`, found without a search.
+fn critical_point(
+    buckling: LinearBuckling,
+    ellipticity: EllipticityReport,
+    reference_load: f64,
+    q: f64,
+    source: &str,
+) -> CriticalPoint {
+    CriticalPoint {
+        buckling,
+        ellipticity,
+        reference_load,
+        wavenumber: Some(q),
+        source: source.into(),
+        search: Vec::new(),
+    }
 }
 
 /// Relative accuracy of $`Q`$ on the coarse mesh of the two-level search.
@@ -396,98 +490,114 @@ fn coarse_scene(scene: &Scene) -> Option<Scene> {
     })
 }
 
-type SearchOutcome = (
-    LinearBuckling,
-    EllipticityReport,
-    f64,
-    Vec<WavenumberEvaluation>,
-    f64,
-);
+impl ThresholdSteps<'_> {
+    /// The wavenumber search of a model that selects its own wavelength; the wavenumber
+    /// model's $`Q`$ instead when its $`\lambda_c(Q)`$ falls to the long-wavelength end of the
+    /// range (no selection after all), or the long-wavelength note when the model is the
+    /// wavenumber model itself.
+    fn search_wavenumber<M: EnergyModel>(
+        &mut self,
+        problem: &mut Problem<M>,
+        factor: &mut SparseFactorization,
+    ) -> Result<CriticalPoint, Error> {
+        let range = wavenumber_range(self.scene);
+        let search = self.observed_search(problem, factor, range)?;
+        let at_lower_end = search.parameter <= range.0 * 1.05;
+        if !at_lower_end || self.wavenumber_model.is_none() {
+            if at_lower_end {
+                self.notes
+                    .push(long_wavelength_end_note(self.scene, search.parameter));
+            }
+            return Ok(CriticalPoint {
+                buckling: search.buckling,
+                ellipticity: search.ellipticity,
+                reference_load: search.reference_load,
+                wavenumber: Some(search.parameter),
+                source: "auto".into(),
+                search: search.evaluations,
+            });
+        }
+        // No wavelength selection: λ_c(Q) falls to the end of the range.
+        let (name, carrier) = self.carrier()?;
+        let (q, source) = (carrier.wavenumber, format!("auto ({name})"));
+        self.notes.push(format!(
+            "model `{}` has no wavelength selection of its own (its critical load falls with Q down to the end of the range, {:.3e} 1/mm); Q = {q:.6e} 1/mm is taken from the {name} minimisation on the same scene",
+            M::SPEC.name, range.0
+        ));
+        let (buckling, ellipticity, shift) = self.buckle_at_wavenumber(problem, factor, q, None)?;
+        Ok(CriticalPoint {
+            search: search.evaluations,
+            ..critical_point(buckling, ellipticity, shift, q, &source)
+        })
+    }
 
-/// The global wavenumber search, with the reference envelope's $`Q`$ for a model that has no
-/// wavelength selection of its own.
-fn search_wavenumber<M: EnergyModel>(
-    scene: &Scene,
-    problem: &mut Problem<M>,
-    factor: &mut SparseFactorization,
-    quiet: bool,
-    notes: &mut Vec<String>,
-) -> Result<(SearchOutcome, String), Error> {
-    let range = wavenumber_range(scene);
-    let options = WavenumberSearchOptions {
-        range,
-        scan_points: SCAN_POINTS,
-        ..WavenumberSearchOptions::default()
-    };
-    let progress = SearchProgress::new(
-        &format!("{}: wavenumber search", M::SPEC.name),
-        ProgressSink::standard_error(quiet),
-    );
-    let mut count = 0;
-    let mut observer = |e: &WavenumberEvaluation| {
-        count += 1;
-        let detail = match (e.critical_load, &e.rejected) {
-            (Some(load), _) => format!("Q = {:.5e}/mm, λ_c = {load:.6e}", e.parameter),
-            (None, Some(reason)) => format!(
-                "Q = {:.5e}/mm rejected: {}",
-                e.parameter,
-                reason.split(':').next().unwrap_or(reason)
-            ),
-            _ => format!("Q = {:.5e}/mm", e.parameter),
+    /// [`two_level_search`] over `range` with its progress on standard error and its failure
+    /// explained (the range in wavelengths, the direction and Poisson hints).
+    fn observed_search<M: EnergyModel>(
+        &self,
+        problem: &mut Problem<M>,
+        factor: &mut SparseFactorization,
+        range: (f64, f64),
+    ) -> Result<WavenumberSearch, Error> {
+        let options = WavenumberSearchOptions {
+            range,
+            scan_points: SCAN_POINTS,
+            ..WavenumberSearchOptions::default()
         };
-        progress.evaluation(count, &detail);
-    };
-    let hints = format!("{}{}", direction_hint(scene), poisson_hint(scene));
-    let fail = |e: String| {
-        Error::Solver(format!(
-            "wavenumber search of `{}` over Q in [{:.3e}, {:.3e}] 1/mm (wavelengths from {:.3e} to {:.3e} mm): {e}. \
-             Hint: check that the load compresses the sheet and that the thickness and tension are physical.{hints}",
-            M::SPEC.name,
-            range.0,
-            range.1,
-            2.0 * PI / range.1,
-            2.0 * PI / range.0
-        ))
-    };
-    let search =
-        two_level_search(scene, problem, factor, &options, &mut observer).map_err(|e| match e {
-            Error::Solver(message) => fail(message),
-            other => other,
-        })?;
-    progress.finish(&format!(
-        "Q = {:.6e}/mm, λ_c = {:.6e}",
-        search.parameter, search.buckling.critical_loads[0]
-    ));
-    let at_lower_end = search.parameter <= range.0 * 1.05;
-    if at_lower_end && M::SPEC.name == "reference-envelope" {
-        notes.push(long_wavelength_end_note(scene, search.parameter));
-    }
-    if !at_lower_end || M::SPEC.name == "reference-envelope" {
-        let outcome = (
-            search.buckling,
-            search.ellipticity,
-            search.parameter,
-            search.evaluations,
-            search.reference_load,
+        let progress = SearchProgress::new(
+            &format!("{}: wavenumber search", M::SPEC.name),
+            ProgressSink::standard_error(self.quiet),
         );
-        return Ok((outcome, "auto".into()));
+        let mut count = 0;
+        let mut observer = |e: &WavenumberEvaluation| {
+            count += 1;
+            progress.evaluation(count, &evaluation_text(e));
+        };
+        let scene = self.scene;
+        let hints = format!("{}{}", direction_hint(scene), poisson_hint(scene));
+        let fail = |e: String| {
+            Error::Solver(format!(
+                "wavenumber search of `{}` over Q in [{:.3e}, {:.3e}] 1/mm (wavelengths from {:.3e} to {:.3e} mm): {e}. \
+                 Hint: check that the load compresses the sheet and that the thickness and tension are physical.{hints}",
+                M::SPEC.name,
+                range.0,
+                range.1,
+                2.0 * PI / range.1,
+                2.0 * PI / range.0
+            ))
+        };
+        let search = two_level_search(scene, problem, factor, &options, &mut observer).map_err(
+            |e| match e {
+                Error::Solver(message) => fail(message),
+                other => other,
+            },
+        )?;
+        progress.finish(&format!(
+            "Q = {:.6e}/mm, λ_c = {:.6e}",
+            search.parameter, search.buckling.critical_loads[0]
+        ));
+        Ok(search)
     }
-    // No wavelength selection: λ_c(Q) falls to the end of the range.
-    let (q, _) = reference_threshold(scene, quiet)?;
-    notes.push(format!(
-        "model `{}` has no wavelength selection of its own (its critical load falls with Q down to the end of the range, {:.3e} 1/mm); Q = {q:.6e} 1/mm is taken from the reference-envelope minimisation on the same scene",
-        M::SPEC.name, range.0
-    ));
-    let (buckling, ellipticity, shift) =
-        buckle_at_wavenumber(scene, problem, factor, quiet, notes, q, None)?;
-    let outcome = (buckling, ellipticity, q, search.evaluations, shift);
-    Ok((outcome, "auto (reference-envelope)".into()))
 }
 
-/// Why the reference envelope's $`\lambda_c(Q)`$ can still fall at the long-wavelength end of
-/// the search: in eq. (42), written $`\lambda(s) = (Ds^2 + as + b)/(s + c)`$ in $`s = Q^2`$, the
-/// minimiser is $`s^* = -c + \sqrt{c^2 + (b - ac)/D}`$, which is below $`(2\pi/L_\min)^2`$ when
-/// the tension is weak or the compressed side short, and does not exist when
+/// One evaluation of the wavenumber search as a progress line.
+fn evaluation_text(e: &WavenumberEvaluation) -> String {
+    match (e.critical_load, &e.rejected) {
+        (Some(load), _) => format!("Q = {:.5e}/mm, λ_c = {load:.6e}", e.parameter),
+        (None, Some(reason)) => format!(
+            "Q = {:.5e}/mm rejected: {}",
+            e.parameter,
+            reason.split(':').next().unwrap_or(reason)
+        ),
+        _ => format!("Q = {:.5e}/mm", e.parameter),
+    }
+}
+
+/// Why a model that selects its own wavelength — the reference envelope, whose $`\lambda_c(Q)`$
+/// is eq. (42) — can still find its minimum at the long-wavelength end of the search: in eq.
+/// (42), written $`\lambda(s) = (Ds^2 + as + b)/(s + c)`$ in $`s = Q^2`$, the minimiser is
+/// $`s^* = -c + \sqrt{c^2 + (b - ac)/D}`$, which is below $`(2\pi/L_\min)^2`$ when the tension
+/// is weak or the compressed side short, and does not exist when
 /// $`N_Y \le D\pi^2/L_X^2\,(6L_Y^2/L_X^2 + 2)`$: then the sheet buckles in one global bulge,
 /// not in wrinkles, and the $`Q`$ where the search stopped depends on the mesh (measured on
 /// $`L_Y/L_X = 10`$: 0.154 N/mm on 12 × 12, 0.137 on 24 × 24).
@@ -563,7 +673,7 @@ fn two_level_search<M: EnergyModel>(
     factor: &mut SparseFactorization,
     options: &WavenumberSearchOptions,
     observer: &mut dyn FnMut(&WavenumberEvaluation),
-) -> Result<wrinkle_runtime::solve::wavenumber::WavenumberSearch, Error> {
+) -> Result<WavenumberSearch, Error> {
     let solve_error = |e: wrinkle_runtime::solve::SolveError| Error::Solver(e.to_string());
     let options = &closed_form_start(scene, options);
     let coarse = coarse_scene(scene);
@@ -686,52 +796,6 @@ fn closed_form_start(scene: &Scene, options: &WavenumberSearchOptions) -> Wavenu
     }
 }
 
-struct ReferenceQ<'a> {
-    scene: &'a Scene,
-    quiet: bool,
-}
-
-impl ModelVisitor for ReferenceQ<'_> {
-    type Output = Result<(f64, f64), Error>;
-    fn visit<M: EnergyModel>(self, mut model: M) -> Self::Output {
-        configure_model(self.scene, &mut model, 1.0)?;
-        let mut problem = build_problem(self.scene, model)?;
-        let mut factor = analyse(&problem)?;
-        let threshold = find_threshold(self.scene, &mut problem, &mut factor, self.quiet)?;
-        let q = threshold
-            .wavenumber
-            .ok_or_else(|| Error::Solver("reference envelope without a wavenumber".into()))?;
-        Ok((q, threshold.critical_load()))
-    }
-}
-
-/// $`Q`$ and $`\lambda_c`$ of the reference envelope's minimisation on `scene`.
-/// Computed once per scene and process (a comparison asks for it for several models).
-fn reference_threshold(scene: &Scene, quiet: bool) -> Result<(f64, f64), Error> {
-    static CACHE: std::sync::Mutex<Vec<(String, (f64, f64))>> = std::sync::Mutex::new(Vec::new());
-    let mut reference = scene.clone();
-    reference.model.name = "reference-envelope".into();
-    reference.model.parameters.clear();
-    let key = reference.to_toml_string();
-    if let Ok(cache) = CACHE.lock()
-        && let Some((_, value)) = cache.iter().find(|(k, _)| *k == key)
-    {
-        return Ok(*value);
-    }
-    let value = with_model(
-        "reference-envelope",
-        ReferenceQ {
-            scene: &reference,
-            quiet,
-        },
-    )
-    .unwrap_or_else(|| Err(unknown_model(&reference)))?;
-    if let Ok(mut cache) = CACHE.lock() {
-        cache.push((key, value));
-    }
-    Ok(value)
-}
-
 /// Eigen-solver restarts of the first attempt about $`\lambda = 0`$ when a shifted second
 /// attempt is possible.
 const FIRST_ATTEMPT_RESTARTS: usize = 25;
@@ -739,53 +803,59 @@ const FIRST_ATTEMPT_RESTARTS: usize = 25;
 /// Fraction of the guessed threshold used as the shift of the second attempt.
 const SHIFT_FRACTION: f64 = 0.8;
 
-/// Linear buckling about $`\lambda = 0`$; if that fails (a small compressed zone whose negative
-/// end of the spectrum hides behind a large positive one, as in a strip in tension), again about
-/// $`\sigma = 0.8\,\lambda_g`$ with $`\lambda_g`$ the reference envelope's threshold on the same
-/// scene: shift-invert about $`\sigma`$ makes the wanted load factors the dominant end of the
-/// spectrum. Returns the analysis and the load it linearised about.
-fn robust_buckling<M: EnergyModel>(
-    scene: &Scene,
-    problem: &Problem<M>,
-    factor: &mut SparseFactorization,
-    quiet: bool,
-    notes: &mut Vec<String>,
-) -> Result<(LinearBuckling, f64), Error> {
-    let mut options = LinearBucklingOptions::default();
-    if M::SPEC.name != "reference-envelope" {
-        // A second attempt exists: do not spend the whole restart budget on the first.
-        options.eigen.max_restarts = FIRST_ATTEMPT_RESTARTS;
+impl ThresholdSteps<'_> {
+    /// Linear buckling about $`\lambda = 0`$; if that fails (a small compressed zone whose
+    /// negative end of the spectrum hides behind a large positive one, as in a strip in
+    /// tension), again about $`\sigma = 0.8\,\lambda_g`$ with $`\lambda_g`$ the wavenumber
+    /// model's threshold on the same scene: shift-invert about $`\sigma`$ makes the wanted load
+    /// factors the dominant end of the spectrum. The second attempt exists only when there is a
+    /// wavenumber model (the scene's model is not that model); the first then spends
+    /// [`FIRST_ATTEMPT_RESTARTS`] restarts, not the whole budget. Returns the analysis and the
+    /// load it linearised about.
+    fn robust_buckling<M: EnergyModel>(
+        &mut self,
+        problem: &Problem<M>,
+        factor: &mut SparseFactorization,
+    ) -> Result<(LinearBuckling, f64), Error> {
+        let scene = self.scene;
+        let mut options = LinearBucklingOptions::default();
+        if self.wavenumber_model.is_some() {
+            // A second attempt exists: do not spend the whole restart budget on the first.
+            options.eigen.max_restarts = FIRST_ATTEMPT_RESTARTS;
+        }
+        let first = match linear_buckling(problem, factor, &options) {
+            Ok(buckling) => return Ok((buckling, 0.0)),
+            Err(error) => error,
+        };
+        let guess = self
+            .wavenumber_model
+            .and_then(|model| Some((model.name(), model.threshold(self.quiet).ok()?)))
+            .filter(|(_, carrier)| {
+                carrier.critical_load.is_finite() && carrier.critical_load > 0.0
+            });
+        let Some((name, carrier)) = guess else {
+            return Err(Error::Solver(format!(
+                "linear buckling: {first}{}",
+                poisson_hint(scene)
+            )));
+        };
+        let guess = carrier.critical_load;
+        let shift = SHIFT_FRACTION * guess;
+        let shifted = LinearBucklingOptions {
+            reference_load: shift,
+            ..LinearBucklingOptions::default()
+        };
+        let buckling = linear_buckling(problem, factor, &shifted).map_err(|second| {
+            Error::Solver(format!(
+                "linear buckling: about λ = 0: {first}; about λ = {shift:.6e} (0.8 × the threshold of `{name}`, model.wavenumber_model): {second}{}",
+                poisson_hint(scene)
+            ))
+        })?;
+        self.notes.push(format!(
+            "linear buckling about λ = 0 did not converge ({first}); solved about λ = {shift:.6e} (0.8 × the threshold {guess:.6e} of `{name}`, model.wavenumber_model)"
+        ));
+        Ok((buckling, shift))
     }
-    let first = match linear_buckling(problem, factor, &options) {
-        Ok(buckling) => return Ok((buckling, 0.0)),
-        Err(error) => error,
-    };
-    let guess = if M::SPEC.name == "reference-envelope" {
-        None
-    } else {
-        reference_threshold(scene, quiet).ok().map(|(_, l)| l)
-    };
-    let Some(guess) = guess.filter(|g| g.is_finite() && *g > 0.0) else {
-        return Err(Error::Solver(format!(
-            "linear buckling: {first}{}",
-            poisson_hint(scene)
-        )));
-    };
-    let shift = SHIFT_FRACTION * guess;
-    let shifted = LinearBucklingOptions {
-        reference_load: shift,
-        ..LinearBucklingOptions::default()
-    };
-    let buckling = linear_buckling(problem, factor, &shifted).map_err(|second| {
-        Error::Solver(format!(
-            "linear buckling: about λ = 0: {first}; about λ = {shift:.6e} (0.8 × the reference envelope's threshold): {second}{}",
-            poisson_hint(scene)
-        ))
-    })?;
-    notes.push(format!(
-        "linear buckling about λ = 0 did not converge ({first}); solved about λ = {shift:.6e} (0.8 × the reference envelope's threshold {guess:.6e})"
-    ));
-    Ok((buckling, shift))
 }
 
 /// Symbolic analysis of the tangent's pattern.

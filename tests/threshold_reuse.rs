@@ -160,3 +160,39 @@ fn run_refuses_a_threshold_of_another_scene_naming_the_key() {
     assert!(stderr.contains("cannot read"), "{stderr}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A threshold file written before `model.wavenumber_model` existed lacks the key: it was
+/// computed with the default wavenumber model and is accepted for a scene that has it; a file
+/// naming another wavenumber model is refused naming the key.
+#[test]
+fn a_file_without_wavenumber_model_is_read_as_the_default() {
+    use wrinkle::Scene;
+    use wrinkle::threshold::PriorThreshold;
+    let dir = scratch("older");
+    let scene = Scene::default();
+    let mut recorded = scene.echo_json();
+    let model = recorded["model"].as_object_mut().unwrap();
+    assert!(model.remove("wavenumber_model").is_some());
+    let file = dir.join("older.json");
+    let older = serde_json::json!({
+        "scene": recorded,
+        "wavenumber": 0.2354,
+        "critical_load": 0.0895,
+    });
+    std::fs::write(&file, older.to_string()).unwrap();
+    let prior = PriorThreshold::read(&file, &scene).expect("an older file is accepted");
+    assert_eq!((prior.wavenumber, prior.critical_load), (0.2354, 0.0895));
+
+    let mut other = scene.clone();
+    other
+        .apply_override("model.wavenumber_model=pure-membrane")
+        .unwrap();
+    match PriorThreshold::read(&file, &other) {
+        Err(wrinkle::Error::Scene { key, message, .. }) => {
+            assert_eq!(key, "model.wavenumber_model", "{message}");
+            assert!(message.contains("reference-envelope"), "{message}");
+        }
+        other => panic!("expected a scene error, got {other:?}"),
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

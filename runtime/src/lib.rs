@@ -13,3 +13,4 @@ pub mod linear;
 pub mod problem;
 pub mod series;
 pub mod solve;
+pub mod wavelength;

@@ -77,9 +77,11 @@ scene_schema! {
             number_or_auto::<Wavenumber>(Float::above(0.0)), Unit::PER_MM;
         /// the model whose minimisation of $`\lambda_c(Q)`$ gives the wavenumber $`Q`$ to models
         /// that do not select their own (a complex envelope, the pure membrane) or whose
-        /// $`\lambda_c(Q)`$ has no minimum in the search range; also gives the shift guess of
-        /// the plate's buckling analysis. Declared ahead of its use: the threshold search does
-        /// not read it yet and takes `reference-envelope` in these roles
+        /// $`\lambda_c(Q)`$ has no minimum in the search range, and the shift guess of a
+        /// buckling analysis that fails about $`\lambda = 0`$ (a plate, a strip in tension); it
+        /// must select its own wavelength (an envelope with gradient and no phase). Its
+        /// threshold is computed once per run, only when needed; a run of this model itself
+        /// uses none
         wavenumber_model => wavenumber_model: String = REFERENCE_MODEL.to_string(),
             ModelName, Unit::NONE;
         /// angle of the wave vector from the X axis (example 2 uses 90)

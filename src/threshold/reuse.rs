@@ -9,12 +9,14 @@
 //! The file is accepted only when it was computed for the same threshold: its echoed scene must
 //! equal this one in every key of [`THRESHOLD_SECTIONS`] (the solver, output and validity
 //! sections do not enter the threshold). Anything else is a usage error naming the file and the
-//! first key that differs (exit 2).
+//! first key that differs (exit 2). A file written before `model.wavenumber_model` existed was
+//! computed with its default, [`REFERENCE_MODEL`], and is read as such.
 
 use crate::error::Error;
 use crate::scene::{Scene, Wavenumber};
 use serde_json::Value;
 use std::path::Path;
+use wrinkle_models::REFERENCE_MODEL;
 
 /// The scene sections the threshold depends on.
 pub const THRESHOLD_SECTIONS: [&str; 5] = ["geometry", "material", "model", "mesh", "load"];
@@ -51,6 +53,7 @@ impl PriorThreshold {
                 "no `scene` object: expected the output of `wrinkle buckle --json` or a run's summary.json".into(),
             )
         })?;
+        let recorded = &with_defaults_of_later_keys(recorded);
         let current = scene.echo_json();
         for section in THRESHOLD_SECTIONS {
             if let Some((key, was, now)) =
@@ -94,6 +97,18 @@ impl PriorThreshold {
             critical_load,
         })
     }
+}
+
+/// The echoed scene `recorded` with the keys added since it was written set to the values the
+/// threshold was computed with: `model.wavenumber_model` = [`REFERENCE_MODEL`].
+fn with_defaults_of_later_keys(recorded: &Value) -> Value {
+    let mut recorded = recorded.clone();
+    if let Some(model) = recorded.get_mut("model").and_then(Value::as_object_mut) {
+        model
+            .entry("wavenumber_model")
+            .or_insert_with(|| Value::from(REFERENCE_MODEL));
+    }
+    recorded
 }
 
 /// The first key (dotted, under `prefix`) where `recorded` and `current` differ, with both

@@ -1,0 +1,169 @@
+//! The scene's `model.wavenumber_model`: the model whose minimisation of $`\lambda_c(Q)`$ gives
+//! the wavenumber $`Q`$ to a model that does not select its own
+//! ([`WavelengthSelection::Carried`], or an own minimum that falls to the end of the range), and
+//! whose critical load is the shift guess of a buckling analysis that failed about
+//! $`\lambda = 0`$.
+//!
+//! Its threshold on the run's scene is computed **at most once**, when a step first needs it,
+//! and the [`WavenumberModel`] is passed along (no process-wide cache): `wrinkle compare` makes
+//! one for its scene and hands it to every model it runs.
+
+use super::{ThresholdOptions, analyse, find_threshold_with};
+use crate::error::Error;
+use crate::scene::Scene;
+use crate::setup::{build_problem, configure_model, scene_error, unknown_model};
+use std::cell::OnceCell;
+use wrinkle_models::{ModelVisitor, with_model};
+use wrinkle_runtime::EnergyModel;
+use wrinkle_runtime::wavelength::WavelengthSelection;
+
+/// The scene key that names the wavenumber model.
+pub const WAVENUMBER_MODEL_KEY: &str = "model.wavenumber_model";
+
+/// The wavenumber and critical load of the wavenumber model's threshold on a scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CarrierThreshold {
+    /// Its minimiser $`Q`$ (1/mm).
+    pub wavenumber: f64,
+    /// Its critical load $`\lambda_c`$ at that $`Q`$.
+    pub critical_load: f64,
+}
+
+/// The wavenumber model of a scene, with its threshold once computed.
+#[derive(Debug)]
+pub struct WavenumberModel {
+    /// The run's scene with `model.name` set to the wavenumber model and no model parameters.
+    scene: Scene,
+    /// `scene` as TOML: two runs share the threshold only when these agree.
+    key: String,
+    /// The threshold, once a step asked for it (a failed attempt is not kept).
+    found: OnceCell<CarrierThreshold>,
+}
+
+impl WavenumberModel {
+    /// The wavenumber model named by `scene` (its threshold not computed yet). A scene error
+    /// naming `model.wavenumber_model` when that model does not select its own wavelength.
+    pub fn for_scene(scene: &Scene) -> Result<Self, Error> {
+        let name = &scene.model.wavenumber_model;
+        let spec = wrinkle_models::catalogue()
+            .into_iter()
+            .find(|spec| spec.name == name.as_str());
+        let Some(spec) = spec else {
+            return Err(scene_error(
+                scene,
+                WAVENUMBER_MODEL_KEY,
+                format!(
+                    "unknown model `{name}` (models: {})",
+                    wrinkle_models::names().join(", ")
+                ),
+            ));
+        };
+        if !spec.wavelength_selection().selects_its_own() {
+            return Err(scene_error(
+                scene,
+                WAVENUMBER_MODEL_KEY,
+                format!(
+                    "model `{name}` does not select its own wavelength ({}), so it cannot give one to other models; use a model that does: {}",
+                    describe(spec.wavelength_selection()),
+                    selecting_models().join(", ")
+                ),
+            ));
+        }
+        let mut own = scene.clone();
+        own.model.name = name.clone();
+        own.model.parameters.clear();
+        Ok(WavenumberModel {
+            key: own.to_toml_string(),
+            scene: own,
+            found: OnceCell::new(),
+        })
+    }
+
+    /// [`Self::for_scene`], or `None` when the scene's model is the wavenumber model itself
+    /// (then it has no helper: its own long-wavelength note applies, nothing falls back).
+    pub fn of(scene: &Scene) -> Result<Option<Self>, Error> {
+        let helper = Self::for_scene(scene)?;
+        Ok((scene.model.name != helper.name()).then_some(helper))
+    }
+
+    /// Registry name of the wavenumber model.
+    pub fn name(&self) -> &str {
+        &self.scene.model.name
+    }
+
+    /// Whether `self` and `other` compute the same threshold (their scenes agree).
+    pub fn same_as(&self, other: &WavenumberModel) -> bool {
+        self.key == other.key
+    }
+
+    /// Its threshold on the scene: computed on the first call (progress on standard error
+    /// unless `quiet`), then returned as found.
+    pub fn threshold(&self, quiet: bool) -> Result<CarrierThreshold, Error> {
+        if let Some(found) = self.found.get() {
+            return Ok(*found);
+        }
+        let visitor = CarrierVisitor {
+            scene: &self.scene,
+            quiet,
+        };
+        let found =
+            with_model(self.name(), visitor).unwrap_or_else(|| Err(unknown_model(&self.scene)))?;
+        Ok(*self.found.get_or_init(|| found))
+    }
+}
+
+/// The models of the registry that select their own wavelength.
+fn selecting_models() -> Vec<&'static str> {
+    wrinkle_models::catalogue()
+        .into_iter()
+        .filter(|spec| spec.wavelength_selection().selects_its_own())
+        .map(|spec| spec.name)
+        .collect()
+}
+
+/// Why a model does not select its own wavelength, in words.
+fn describe(selection: WavelengthSelection) -> &'static str {
+    use wrinkle_runtime::wavelength::CarriedBecause;
+    match selection {
+        WavelengthSelection::OwnMinimum => "it does",
+        WavelengthSelection::Carried(CarriedBecause::Phase) => {
+            "its envelope has a phase, a field of role `envelope_imaginary`"
+        }
+        WavelengthSelection::Carried(CarriedBecause::NoEnvelopeGradient) => {
+            "no term reads the gradient of its envelope"
+        }
+        WavelengthSelection::ResolvedByMesh => {
+            "it has no `wavenumber` parameter: its wrinkles are resolved by the mesh"
+        }
+    }
+}
+
+/// The threshold of the wavenumber model on its scene.
+struct CarrierVisitor<'a> {
+    scene: &'a Scene,
+    quiet: bool,
+}
+
+impl ModelVisitor for CarrierVisitor<'_> {
+    type Output = Result<CarrierThreshold, Error>;
+    fn visit<M: EnergyModel>(self, mut model: M) -> Self::Output {
+        configure_model(self.scene, &mut model, 1.0)?;
+        let mut problem = build_problem(self.scene, model)?;
+        let mut factor = analyse(&problem)?;
+        let options = ThresholdOptions {
+            quiet: self.quiet,
+            ..ThresholdOptions::default()
+        };
+        let threshold = find_threshold_with(self.scene, &mut problem, &mut factor, &options)?;
+        let wavenumber = threshold.wavenumber.ok_or_else(|| {
+            Error::Solver(format!(
+                "the wavenumber model `{}` gave no wavenumber",
+                M::SPEC.name
+            ))
+        })?;
+        Ok(CarrierThreshold {
+            wavenumber,
+            critical_load: threshold.critical_load(),
+        })
+    }
+}
