@@ -36,19 +36,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             scene.apply_override(&setting)?;
         }
         let report = run(&scene, &base.join(method), false)?;
-        let s = &report.summary;
-        let points: Vec<PathPoint> = serde_json::from_value(s["path"].clone())?;
-        let worst = points.iter().map(|p| p.residual).fold(0.0, f64::max);
+        let s = report.summary;
+        let worst = s.path.iter().map(|p| p.residual).fold(0.0, f64::max);
         rows.push(format!(
             "{method:>5} | {:>5} | {:>15} | {:>10.2} | {:>9.2} | {:>9.2e} | {}",
-            s["steps"],
-            s["statistics"]["factorizations"],
-            s["timings"]["path"].as_f64().unwrap_or(f64::NAN),
-            s["timings"]["series"].as_f64().unwrap_or(0.0),
-            worst,
-            s["stop"].as_str().unwrap_or("")
+            s.steps, s.statistics.factorizations, s.timings.path, s.timings.series, worst, s.stop
         ));
-        curves.push(points);
+        curves.push(s.path);
     }
     println!("example 1, mesh {nx} x {ny}, path from 0 to envelope/h = 2");
     println!("method | steps | factorisations | path (s) | series (s) | worst res | stop");

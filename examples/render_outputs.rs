@@ -21,8 +21,8 @@ use vtkio::model::{Attribute, DataSet, Piece, VertexNumbers, Vtk};
 use wrinkle::output::report::format_rows;
 use wrinkle::output::{
     ClosedFormCurve, GridField, LoadMarker, PathPoint, Profile, ProfilePlot, Quantity, Report,
-    ReportFigure, Response, ResponsePoint, RunDirectory, RunSummary, Severity, Warning, WrinkleMap,
-    plot_comparison, plot_profiles, plot_response, plot_wrinkle_map, write_report,
+    ReportFigure, Response, ResponsePoint, RunDirectory, Severity, SummaryTable, Warning,
+    WrinkleMap, plot_comparison, plot_profiles, plot_response, plot_wrinkle_map, write_report,
 };
 use wrinkle_runtime::fem::Mesh;
 
@@ -144,7 +144,7 @@ fn main() -> Result<()> {
     report.files = directory.files().to_vec();
     report.files.push("summary.json".into());
     write_report(&report_path, &report)?;
-    directory.write_summary(serde_json::json!({
+    directory.write_summary(&serde_json::json!({
         "rendered_from": run_directory.display().to_string(),
         "summary_rows": format_rows(&summary.rows()),
     }))?;
@@ -376,7 +376,7 @@ impl RunData {
         }
     }
 
-    fn summary(&self) -> RunSummary {
+    fn summary(&self) -> SummaryTable {
         let s = &self.summary;
         let last = self.points.last();
         let target = s["scene"]["solver"]["max_envelope_over_h"]
@@ -388,7 +388,7 @@ impl RunData {
                 (Some(a), Some(t)) => a >= t * (1.0 - 1e-9),
                 _ => true,
             };
-        RunSummary {
+        SummaryTable {
             model: self.model.clone(),
             method: self.method.clone(),
             dofs: s["dofs"].as_u64().unwrap_or(0) as usize,

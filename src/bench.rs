@@ -5,10 +5,11 @@
 //! method (ANM with Padé approximants) — and then along three one-factor sweeps around it: the
 //! mesh (at the reference's $`N`$ and $`\varepsilon`$) for **every path method** ([`Method`]: ANM
 //! with Padé, classical ANM, Newton–Riks), the order (at the reference mesh and $`\varepsilon`$)
-//! and the series tolerance (at the reference mesh and $`N`$) for both ANM variants. Every point is a whole [`crate::run::run`] (threshold search, imperfection,
-//! path to the amplitude target [`TARGET_AMPLITUDE`]); its wall times are read from the run's
-//! `summary.json` (`timings.threshold`, `timings.path`, `timings.total`), and three results
-//! are compared with the reference of the **same** model:
+//! and the series tolerance (at the reference mesh and $`N`$) for both ANM variants. Every
+//! point is a whole [`crate::run::run`] (threshold search, imperfection, path to the amplitude
+//! target [`TARGET_AMPLITUDE`]); its costs are read from the run's result
+//! ([`RunSummary::timings`], `statistics`, `memory`), and three results are compared with the
+//! reference of the **same** model:
 //!
 //! * the critical load $`\lambda_c`$ of linear buckling;
 //! * the load $`\lambda_{a/h=1}`$ at which the maximum physical amplitude first reaches one
@@ -17,7 +18,7 @@
 //!   $`\lambda_c`$) ([`amplitude_at_load`]);
 //!
 //! both interpolated by a cubic through the path points around the crossing
-//! ([`value_at_crossing`]).
+//! ([`value_at_crossing`](crate::study::value_at_crossing)).
 //!
 //! Errors are relative, $`\lvert x - x_\text{ref}\rvert / \lvert x_\text{ref}\rvert`$
 //! ([`relative_error`]). Where the scene is the clamped biaxial rectangle, $`\lambda_c`$ is also
@@ -32,10 +33,12 @@
 
 mod plot;
 
-use crate::error::Error;
-use crate::output::{PathPoint, write_bytes_atomically, write_json};
-use crate::run::{RunOutcome, run};
+use crate::error::{Error, io_error};
+use crate::output::{write_bytes_atomically, write_json};
+use crate::results::{RunOutcome, RunSummary};
+use crate::run::run;
 use crate::scene::{PathMethod, Scene, Wavenumber};
+use crate::study::{amplitude_at_load, load_at_amplitude, number_cell, relative_error};
 use crate::threshold::{closed_form_threshold, load_unit};
 use serde_json::json;
 use std::path::Path;
@@ -390,106 +393,14 @@ pub struct Bench {
     pub quick: bool,
 }
 
-/// $`\lvert x - x_\text{ref}\rvert / \lvert x_\text{ref}\rvert`$; `None` when either is missing,
-/// not finite, or the reference is zero.
-pub fn relative_error(value: Option<f64>, reference: Option<f64>) -> Option<f64> {
-    let (x, r) = (value?, reference?);
-    let error = (x - r).abs() / r.abs();
-    (x.is_finite() && r != 0.0 && error.is_finite()).then_some(error)
-}
-
-/// Where `x` first reaches `target` along `samples` (pairs $`(x, y)`$ in path order), the
-/// value of $`y`$ there: the cubic (Lagrange) through the two samples on either side of the
-/// crossing, skipping samples that repeat an abscissa (the end of one step is the start of the
-/// next); linear between the two around the crossing when there are not four. The path's dense
-/// output is a few points per step along a curved response, so linear interpolation alone adds
-/// an error (about $`10^{-4}`$ in $`a/h`$ at $`1.1\lambda_c`$) larger than the solver's.
-///
-/// The cubic is kept only when it lies between the two values around the crossing (where a
-/// response monotone between two samples must be): across a step much longer than its
-/// neighbours — Riks' one step over the knee of the long strip, $`a/h`$ from 0.02 to 1.49 —
-/// the cubic through such unevenly spaced samples overshoots (it gave $`\lambda(a/h = 1)`$ =
-/// 27.9 where the bracket is 13.9–16.0), and the linear value is used instead.
-pub fn value_at_crossing(samples: &[(f64, f64)], target: f64) -> Option<f64> {
-    let i = samples
-        .windows(2)
-        .position(|pair| pair[0].0 < target && pair[1].0 >= target)?;
-    let (a, b) = (samples[i], samples[i + 1]);
-    let linear = a.1 + (target - a.0) / (b.0 - a.0) * (b.1 - a.1);
-    let mut before = vec![a];
-    for &sample in samples[..i].iter().rev() {
-        if before.len() == 2 {
-            break;
-        }
-        if sample.0 < before[before.len() - 1].0 {
-            before.push(sample);
-        }
-    }
-    let mut nodes: Vec<(f64, f64)> = before.into_iter().rev().collect();
-    nodes.push(b);
-    for &sample in &samples[i + 2..] {
-        if nodes.len() == 4 {
-            break;
-        }
-        if sample.0 > nodes[nodes.len() - 1].0 {
-            nodes.push(sample);
-        }
-    }
-    if nodes.len() < 4 {
-        return Some(linear);
-    }
-    let cubic: f64 = nodes
-        .iter()
-        .enumerate()
-        .map(|(j, &(xj, yj))| {
-            let basis: f64 = nodes
-                .iter()
-                .enumerate()
-                .filter(|&(k, _)| k != j)
-                .map(|(_, &(xk, _))| (target - xk) / (xj - xk))
-                .product();
-            yj * basis
-        })
-        .sum();
-    let (low, high) = (a.1.min(b.1), a.1.max(b.1));
-    Some(if cubic.is_finite() && (low..=high).contains(&cubic) {
-        cubic
-    } else {
-        linear
-    })
-}
-
-/// Maximum physical $`a/h`$ where the path first reaches the load `load`
-/// ([`value_at_crossing`]); `None` if the path stops before.
-pub fn amplitude_at_load(points: &[PathPoint], load: f64) -> Option<f64> {
-    let samples: Vec<(f64, f64)> = points
-        .iter()
-        .map(|p| (p.lambda, p.max_amplitude_over_h))
-        .collect();
-    value_at_crossing(&samples, load)
-}
-
-/// Load where the maximum physical $`a/h`$ first reaches `amplitude` ([`value_at_crossing`];
-/// `wrinkle compare` uses it too); `None` if never.
-pub fn load_at_amplitude(points: &[PathPoint], amplitude: f64) -> Option<f64> {
-    let samples: Vec<(f64, f64)> = points
-        .iter()
-        .map(|p| (p.max_amplitude_over_h, p.lambda))
-        .collect();
-    value_at_crossing(&samples, amplitude)
-}
-
-/// The three results read from a run's `summary.json`.
-pub fn measure(summary: &serde_json::Value) -> Measurement {
-    let points: Vec<PathPoint> =
-        serde_json::from_value(summary["path"].clone()).unwrap_or_default();
-    let critical_load = summary["linear_buckling_load"]
-        .as_f64()
-        .filter(|l| l.is_finite());
+/// The three results of a run.
+pub fn measure(summary: &RunSummary) -> Measurement {
+    let points = &summary.path;
+    let critical_load = Some(summary.linear_buckling_load).filter(|l| l.is_finite());
     Measurement {
         critical_load,
-        load_at_amplitude_1: load_at_amplitude(&points, AMPLITUDE_LEVEL),
-        amplitude_at_1_1: critical_load.and_then(|l| amplitude_at_load(&points, LOAD_RATIO * l)),
+        load_at_amplitude_1: load_at_amplitude(points, AMPLITUDE_LEVEL),
+        amplitude_at_1_1: critical_load.and_then(|l| amplitude_at_load(points, LOAD_RATIO * l)),
     }
 }
 
@@ -682,7 +593,7 @@ fn run_point(
         errors: Errors::default(),
     };
     match run(&point, &directory.join("runs").join(model).join(name), true) {
-        Ok(report) => fill_row(&mut row, &report.summary, &report.outcome),
+        Ok(report) => fill_row(&mut row, &report.summary),
         Err(error @ Error::Scene { .. }) => return Err(error),
         Err(error) => row.reason = Some(error.to_string()),
     }
@@ -698,30 +609,30 @@ fn run_point(
 }
 
 /// Cost and results of a run that produced a summary.
-fn fill_row(row: &mut BenchRow, summary: &serde_json::Value, outcome: &RunOutcome) {
-    let count = |value: &serde_json::Value| value.as_u64().map(|v| v as usize);
-    let seconds = |key: &str| summary["timings"][key].as_f64().filter(|t| t.is_finite());
-    row.dofs = count(&summary["dofs"]);
-    row.wavenumber = summary["wavenumber"].as_f64();
-    row.steps = count(&summary["steps"]);
-    row.factorizations = count(&summary["statistics"]["factorizations"]);
-    row.time_threshold = seconds("threshold");
-    row.time_path = seconds("path");
-    row.time_total = seconds("total");
-    let megabytes = |key: &str| summary["memory"][key].as_f64().map(|b| b / 1e6);
+fn fill_row(row: &mut BenchRow, summary: &RunSummary) {
+    let finite = |value: f64| Some(value).filter(|v| v.is_finite());
+    let timings = &summary.timings;
+    let memory = &summary.memory;
+    row.dofs = Some(summary.dofs);
+    row.wavenumber = summary.wavenumber.filter(|q| q.is_finite());
+    row.steps = Some(summary.steps);
+    row.factorizations = Some(summary.statistics.factorizations);
+    row.time_threshold = finite(timings.threshold);
+    row.time_path = finite(timings.path);
+    row.time_total = finite(timings.total);
     row.cost = CostSplit {
-        time_assembly: seconds("assembly"),
-        time_factorization: seconds("factorization"),
-        time_series: seconds("series"),
-        time_series_solves: seconds("series_solves"),
-        time_residual_checks: seconds("residual_checks"),
-        time_bifurcation: seconds("bifurcation_prediction"),
-        time_recording: seconds("recording"),
-        peak_memory_mb: megabytes("peak_resident_bytes"),
-        tape_mb: megabytes("taylor_tape_bytes"),
-        factor_nonzeros: count(&summary["memory"]["factor_nonzeros"]),
+        time_assembly: finite(timings.assembly),
+        time_factorization: finite(timings.factorization),
+        time_series: finite(timings.series),
+        time_series_solves: finite(timings.series_solves),
+        time_residual_checks: finite(timings.residual_checks),
+        time_bifurcation: finite(timings.bifurcation_prediction),
+        time_recording: finite(timings.recording),
+        peak_memory_mb: memory.peak_resident_bytes.map(|b| b as f64 / 1e6),
+        tape_mb: memory.taylor_tape_bytes.map(|b| b as f64 / 1e6),
+        factor_nonzeros: memory.factor_nonzeros,
     };
-    let (name, reason, usable) = match outcome {
+    let (name, reason, usable) = match &summary.outcome {
         RunOutcome::Reached => ("reached", None, true),
         RunOutcome::Invalid(r) => ("invalid", Some(r.clone()), true),
         RunOutcome::Incomplete(r) => ("incomplete", Some(r.clone()), false),
@@ -732,17 +643,6 @@ fn fill_row(row: &mut BenchRow, summary: &serde_json::Value, outcome: &RunOutcom
     if usable {
         row.measured = measure(summary);
     }
-}
-
-fn io_error(path: &Path) -> impl FnOnce(std::io::Error) -> Error + '_ {
-    move |error| Error::Io {
-        path: path.display().to_string(),
-        error,
-    }
-}
-
-fn cell(value: Option<f64>) -> String {
-    value.map(|v| format!("{v:.10e}")).unwrap_or_default()
 }
 
 fn count_cell(value: Option<usize>) -> String {
@@ -765,30 +665,30 @@ pub fn bench_csv(bench: &Bench) -> String {
             count_cell(row.dofs),
             row.settings.order.to_string(),
             format!("{:e}", row.settings.series_tolerance),
-            cell(row.wavenumber),
+            number_cell(row.wavenumber),
             row.wavenumber_fixed.to_string(),
             count_cell(row.steps),
             count_cell(row.factorizations),
-            cell(row.time_threshold),
-            cell(row.time_path),
-            cell(row.time_total),
-            cell(row.cost.time_assembly),
-            cell(row.cost.time_factorization),
-            cell(row.cost.time_series),
-            cell(row.cost.time_series_solves),
-            cell(row.cost.time_residual_checks),
-            cell(row.cost.time_bifurcation),
-            cell(row.cost.time_recording),
-            cell(row.cost.peak_memory_mb),
-            cell(row.cost.tape_mb),
+            number_cell(row.time_threshold),
+            number_cell(row.time_path),
+            number_cell(row.time_total),
+            number_cell(row.cost.time_assembly),
+            number_cell(row.cost.time_factorization),
+            number_cell(row.cost.time_series),
+            number_cell(row.cost.time_series_solves),
+            number_cell(row.cost.time_residual_checks),
+            number_cell(row.cost.time_bifurcation),
+            number_cell(row.cost.time_recording),
+            number_cell(row.cost.peak_memory_mb),
+            number_cell(row.cost.tape_mb),
             count_cell(row.cost.factor_nonzeros),
-            cell(m.critical_load),
-            cell(e.error_critical_load),
-            cell(e.error_critical_load_closed_form),
-            cell(m.load_at_amplitude_1),
-            cell(e.error_load_at_amplitude_1),
-            cell(m.amplitude_at_1_1),
-            cell(e.error_amplitude_at_1_1),
+            number_cell(m.critical_load),
+            number_cell(e.error_critical_load),
+            number_cell(e.error_critical_load_closed_form),
+            number_cell(m.load_at_amplitude_1),
+            number_cell(e.error_load_at_amplitude_1),
+            number_cell(m.amplitude_at_1_1),
+            number_cell(e.error_amplitude_at_1_1),
         ];
         csv.push_str(&line.join(","));
         csv.push('\n');
@@ -1020,76 +920,6 @@ pub fn bench_table(bench: &Bench) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn point(lambda: f64, amplitude: f64) -> PathPoint {
-        PathPoint {
-            step: 0,
-            interior: false,
-            lambda,
-            n_x: None,
-            max_amplitude: amplitude,
-            max_amplitude_over_h: amplitude,
-            centre_amplitude_over_h: amplitude,
-            residual: 0.0,
-            elliptic: true,
-            closed_form_amplitude_over_h: None,
-        }
-    }
-
-    #[test]
-    fn amplitude_is_interpolated_at_the_first_crossing() {
-        let path = [point(0.0, 0.0), point(1.0, 0.5), point(2.0, 1.5)];
-        assert_eq!(amplitude_at_load(&path, 1.5), Some(1.0));
-        assert_eq!(amplitude_at_load(&path, 3.0), None);
-        assert_eq!(load_at_amplitude(&path, 1.0), Some(1.5));
-    }
-
-    /// A cubic response is reproduced exactly, even with a repeated step end in the samples;
-    /// linear interpolation of the same samples is off by about 0.03.
-    #[test]
-    fn cubic_interpolation_reproduces_a_cubic() {
-        let f = |x: f64| 0.2 + x - 0.7 * x * x + 0.3 * x * x * x;
-        let xs = [0.0, 0.5, 1.0, 1.0, 1.6, 2.0, 2.5];
-        let samples: Vec<(f64, f64)> = xs.iter().map(|&x| (x, f(x))).collect();
-        let value = value_at_crossing(&samples, 1.3).unwrap();
-        assert!((value - f(1.3)).abs() < 1e-12, "{value} vs {}", f(1.3));
-        let linear = f(1.0) + 0.5 * (f(1.6) - f(1.0));
-        assert!((linear - f(1.3)).abs() > 1e-2);
-    }
-
-    /// Riks' path of the long strip at 16 × 8 steps over the knee in one step (a/h from 0.02
-    /// to 1.49): the cubic through the four samples around a/h = 1 leaves that step's load
-    /// bracket, and the value falls back to the linear one inside it.
-    #[test]
-    fn a_cubic_that_overshoots_a_long_step_falls_back_to_linear() {
-        let path = [
-            point(9.421, 0.0005),
-            point(12.396, 0.0016),
-            point(13.883, 0.0205),
-            point(15.987, 1.4943),
-            point(17.474, 2.0442),
-            point(19.192, 2.5930),
-        ];
-        let load = load_at_amplitude(&path, 1.0).unwrap();
-        let linear = 13.883 + (1.0 - 0.0205) / (1.4943 - 0.0205) * (15.987 - 13.883);
-        assert!((load - linear).abs() < 1e-12, "{load} vs {linear}");
-        // Where the cubic stays inside its bracket it is kept (it differs from the linear value).
-        let amplitude = amplitude_at_load(&path, 17.0).unwrap();
-        let linear = 1.4943 + (17.0 - 15.987) / (17.474 - 15.987) * (2.0442 - 1.4943);
-        assert!((1.4943..=2.0442).contains(&amplitude), "{amplitude}");
-        assert!((amplitude - linear).abs() > 1e-3, "{amplitude} vs {linear}");
-    }
-
-    #[test]
-    fn relative_errors_are_finite_or_absent() {
-        assert_eq!(
-            relative_error(Some(1.1), Some(1.0)).map(|e| (e * 1e6).round()),
-            Some(1e5)
-        );
-        assert_eq!(relative_error(Some(1.0), Some(0.0)), None);
-        assert_eq!(relative_error(None, Some(1.0)), None);
-        assert_eq!(relative_error(Some(f64::NAN), Some(1.0)), None);
-    }
 
     #[test]
     fn the_reference_is_the_finest_and_tightest_and_is_not_repeated() {

@@ -8,7 +8,7 @@ use crate::closed_form;
 use crate::commands;
 use crate::error::Error;
 use crate::scene::{LoadKind, Scene};
-use crate::threshold::Threshold;
+use crate::threshold::ThresholdSummary;
 use clap::{Args, Parser, Subcommand};
 use std::ffi::OsString;
 use std::io::Write;
@@ -181,67 +181,20 @@ where
 /// Executes one subcommand, writing its results on stdout.
 pub fn execute(command: &Command) -> Result<(), Error> {
     match command {
-        Command::Buckle { scene, json, quiet } => {
-            let scene = scene.resolve()?;
-            let report = commands::buckle(&scene, *quiet)?;
-            if *json {
-                print_stdout(&format!("{}\n", buckle_json(&scene, &report)))?;
-            } else {
-                print_stdout(&buckle_summary(&scene, &report))?;
-            }
-            match report.validity_failure(&scene.validity) {
-                Some(reason) => Err(Error::Invalid(reason)),
-                None => Ok(()),
-            }
-        }
+        Command::Buckle { scene, json, quiet } => buckle(&scene.resolve()?, *json, *quiet),
         Command::Run {
             scene,
             out,
             threshold,
             quiet,
-        } => {
-            let mut scene = scene.resolve()?;
-            let prior = threshold
-                .as_deref()
-                .map(|file| crate::threshold::PriorThreshold::read(file, &scene))
-                .transpose()?;
-            if let Some(directory) = out {
-                scene.output.directory = directory.display().to_string();
-            }
-            let directory = PathBuf::from(&scene.output.directory);
-            crate::interrupt::install();
-            commands::run(&scene, &directory, *quiet, prior.as_ref())?;
-            eprintln!("outputs in {}", directory.display());
-            Ok(())
-        }
+        } => run(scene, out.as_deref(), threshold.as_deref(), *quiet),
         Command::Compare {
             scene,
             models,
             model_overrides,
             out,
             quiet,
-        } => {
-            let scene = scene.resolve()?;
-            let models: Vec<String> = if models.is_empty() {
-                wrinkle_models::names()
-                    .iter()
-                    .map(|m| m.to_string())
-                    .collect()
-            } else {
-                models.clone()
-            };
-            let directory = out
-                .clone()
-                .unwrap_or_else(|| PathBuf::from(&scene.output.directory).join("compare"));
-            let comparison =
-                crate::compare::compare(&scene, &models, model_overrides, &directory, *quiet)?;
-            print_stdout(&crate::compare::comparison_table(
-                &comparison,
-                crate::threshold::load_unit(&scene),
-            ))?;
-            eprintln!("comparison in {}", directory.display());
-            Ok(())
-        }
+        } => compare(&scene.resolve()?, models, model_overrides, out, *quiet),
         Command::Bench {
             scene,
             models,
@@ -258,37 +211,114 @@ pub fn execute(command: &Command) -> Result<(), Error> {
             scene,
             json,
             table_1,
-        } => {
-            let scene = scene.resolve()?;
-            let options = analytic::AnalyticOptions {
-                table_1: *table_1,
-                ..analytic::AnalyticOptions::default()
-            };
-            let report = analytic::analyse(&scene, &options)?;
-            if *json {
-                print_stdout(&format!("{}\n", report.to_json(&scene)))
-            } else {
-                print_stdout(&report.summary(&scene))
-            }
-        }
+        } => analytic(&scene.resolve()?, *json, *table_1),
         Command::Models => print_stdout(&models_listing(&commands::models())),
         Command::Scene { scene } => print_stdout(&scene.resolve()?.to_toml_string()),
     }
 }
 
+/// `wrinkle buckle`: the threshold as JSON or as text; exit 4 when a validity check the scene
+/// does not accept failed.
+fn buckle(scene: &Scene, json: bool, quiet: bool) -> Result<(), Error> {
+    let threshold = commands::buckle(scene, quiet)?;
+    let summary = ThresholdSummary::new(scene, &threshold);
+    if json {
+        print_json(&buckle_json(scene, &summary))?;
+    } else {
+        print_stdout(&buckle_summary(scene, &summary))?;
+    }
+    match threshold.validity_failure(&scene.validity) {
+        Some(reason) => Err(Error::Invalid(reason)),
+        None => Ok(()),
+    }
+}
+
+/// `wrinkle run`: the scene (`--out` replacing `output.directory`), an earlier threshold to
+/// reuse (`--threshold`), the run with Ctrl-C caught.
+fn run(
+    scene: &SceneArguments,
+    out: Option<&Path>,
+    threshold: Option<&Path>,
+    quiet: bool,
+) -> Result<(), Error> {
+    let mut scene = scene.resolve()?;
+    let prior = threshold
+        .map(|file| crate::threshold::PriorThreshold::read(file, &scene))
+        .transpose()?;
+    if let Some(directory) = out {
+        scene.output.directory = directory.display().to_string();
+    }
+    let directory = PathBuf::from(&scene.output.directory);
+    crate::interrupt::install();
+    commands::run(&scene, &directory, quiet, prior.as_ref())?;
+    eprintln!("outputs in {}", directory.display());
+    Ok(())
+}
+
+/// `wrinkle compare`: every registered model unless `models` names some.
+fn compare(
+    scene: &Scene,
+    models: &[String],
+    model_overrides: &[String],
+    out: &Option<PathBuf>,
+    quiet: bool,
+) -> Result<(), Error> {
+    let models: Vec<String> = if models.is_empty() {
+        wrinkle_models::names()
+            .iter()
+            .map(|m| m.to_string())
+            .collect()
+    } else {
+        models.to_vec()
+    };
+    let directory = out
+        .clone()
+        .unwrap_or_else(|| PathBuf::from(&scene.output.directory).join("compare"));
+    let comparison = crate::compare::compare(scene, &models, model_overrides, &directory, quiet)?;
+    print_stdout(&crate::compare::comparison_table(
+        &comparison,
+        crate::threshold::load_unit(scene),
+    ))?;
+    eprintln!("comparison in {}", directory.display());
+    Ok(())
+}
+
+/// `wrinkle analytic`: the closed forms of the scene, as JSON or as text.
+fn analytic(scene: &Scene, json: bool, table_1: bool) -> Result<(), Error> {
+    let options = analytic::AnalyticOptions {
+        table_1,
+        ..analytic::AnalyticOptions::default()
+    };
+    let report = analytic::analyse(scene, &options)?;
+    if json {
+        print_stdout(&format!("{}\n", report.to_json(scene)))
+    } else {
+        print_stdout(&report.summary(scene))
+    }
+}
+
 /// The `buckle --json` object: the threshold's keys (`docs/outputs.md`) and the effective
 /// scene under `scene`.
-pub fn buckle_json(scene: &Scene, report: &Threshold) -> serde_json::Value {
-    let mut value = crate::threshold::threshold_json(scene, report);
-    if let Some(object) = value.as_object_mut() {
-        object.insert("scene".to_string(), scene.echo_json());
+#[derive(Debug, serde::Serialize)]
+pub struct BuckleJson<'a> {
+    /// The threshold's keys.
+    #[serde(flatten)]
+    pub threshold: &'a ThresholdSummary,
+    /// The effective scene, as echoed.
+    pub scene: serde_json::Value,
+}
+
+/// The `buckle --json` object of `threshold`, found on `scene`.
+pub fn buckle_json<'a>(scene: &Scene, threshold: &'a ThresholdSummary) -> BuckleJson<'a> {
+    BuckleJson {
+        threshold,
+        scene: scene.echo_json(),
     }
-    value
 }
 
 /// The human summary printed by `buckle`.
-pub fn buckle_summary(scene: &Scene, report: &Threshold) -> String {
-    let critical = report.critical_load();
+pub fn buckle_summary(scene: &Scene, report: &ThresholdSummary) -> String {
+    let critical = report.critical_load;
     let mut lines = vec![
         format!("scene: {}", scene.source),
         format!("model: {} ({} dofs)", report.model, report.dofs),
@@ -305,21 +335,24 @@ pub fn buckle_summary(scene: &Scene, report: &Threshold) -> String {
     match (report.wavenumber, report.wavelength) {
         (Some(q), _) => lines.push(format!(
             "wavenumber: Q = {q:.6e} 1/mm ({}), wavelength 2π/Q = {:.6} mm",
-            report.wavenumber_source,
+            report.wavenumber_mode,
             closed_form::wavelength(q)
         )),
         (None, Some(l)) => lines.push(format!("wavelength of the mode: {l:.6} mm")),
         (None, None) => {}
     }
-    if let Some((reference, _)) = crate::threshold::closed_form_threshold(scene) {
-        let difference = (critical - reference) / reference;
+    let closed_form = &report.closed_form;
+    if let (Some(reference), Some(difference)) = (
+        closed_form.closed_form_critical_load,
+        closed_form.closed_form_relative_difference,
+    ) {
         lines.push(format!(
             "closed form (42), envelope: λ_c = {reference:.6e}, relative difference {difference:+.3e}"
         ));
     }
     lines.push(format!(
         "{} buckling analyses, {:.2} s",
-        report.evaluations, report.seconds
+        report.buckling_evaluations, report.seconds
     ));
     for note in &report.notes {
         lines.push(format!("note: {note}"));
@@ -353,6 +386,15 @@ pub fn models_listing(models: &[(String, String, Vec<String>, Vec<String>)]) -> 
         ));
     }
     text
+}
+
+/// Writes `value` as one line of JSON to stdout.
+fn print_json(value: &impl serde::Serialize) -> Result<(), Error> {
+    let text = serde_json::to_string(value).map_err(|error| Error::Io {
+        path: "<stdout>".into(),
+        error: error.into(),
+    })?;
+    print_stdout(&format!("{text}\n"))
 }
 
 /// Writes to stdout; a closed pipe (e.g. `| head`) is not an error worth a panic.

@@ -38,7 +38,7 @@ pub fn run(
         let _ = std::io::stdout().write_all(report.summary_text.as_bytes());
     }
     let written = format!("(outputs written to {})", output_directory.display());
-    match &report.outcome {
+    match &report.summary.outcome {
         RunOutcome::Reached => Ok(report),
         RunOutcome::Failed(why) => Err(Error::Solver(format!("{why} {written}"))),
         RunOutcome::Incomplete(why) => Err(Error::Incomplete(format!("{why} {written}"))),

@@ -7,14 +7,14 @@
 //! others: its row says why. `MODEL:KEY=VALUE` overrides apply to one model only (a plate
 //! needs a mesh that resolves its wrinkles; an envelope model does not).
 
-use crate::bench::load_at_amplitude;
-use crate::error::Error;
+use crate::error::{Error, io_error};
 use crate::output::{
-    PathPoint, Quantity, Response, ResponsePoint, plot_comparison, write_bytes_atomically,
-    write_json,
+    Quantity, Response, ResponsePoint, plot_comparison, write_bytes_atomically, write_json,
 };
-use crate::run::{RunOutcome, run_with};
-use crate::scene::{LoadKind, Scene};
+use crate::results::{RunSummary, load_quantity};
+use crate::run::run_with;
+use crate::scene::Scene;
+use crate::study::{load_at_amplitude, number_cell};
 use crate::threshold::{ThresholdOptions, WavenumberModel, closed_form_threshold};
 use serde_json::json;
 use std::path::Path;
@@ -57,37 +57,31 @@ pub struct Comparison {
     pub closed_form_critical_load: Option<f64>,
 }
 
-fn row_of(model: &str, summary: &serde_json::Value, outcome: &RunOutcome) -> CompareRow {
-    let points: Vec<PathPoint> =
-        serde_json::from_value(summary["path"].clone()).unwrap_or_default();
-    let (name, reason) = match outcome {
-        RunOutcome::Reached => ("reached", None),
-        RunOutcome::Failed(r) => ("failed", Some(r.clone())),
-        RunOutcome::Incomplete(r) => ("incomplete", Some(r.clone())),
-        RunOutcome::Invalid(r) => ("invalid", Some(r.clone())),
-        RunOutcome::Interrupted(r) => ("interrupted", Some(r.clone())),
-    };
+/// One model's row from the result of its run.
+fn row_of(model: &str, summary: &RunSummary) -> CompareRow {
+    let finite = |value: Option<f64>| value.filter(|v| v.is_finite());
     CompareRow {
         model: model.to_string(),
-        outcome: name.into(),
-        reason,
-        critical_load: summary["linear_buckling_load"].as_f64(),
+        outcome: summary.outcome.name().into(),
+        reason: summary.outcome.reason().map(str::to_string),
+        critical_load: finite(Some(summary.linear_buckling_load)),
         critical_load_ratio: None,
-        wavenumber: summary["wavenumber"].as_f64(),
-        wavelength: summary["wavelength"].as_f64(),
+        wavenumber: finite(summary.wavenumber),
+        wavelength: finite(summary.wavelength),
         load_at_amplitude: AMPLITUDE_LEVELS
             .iter()
-            .map(|&a| load_at_amplitude(&points, a))
+            .map(|&a| load_at_amplitude(&summary.path, a))
             .collect(),
-        dofs: summary["dofs"].as_u64().map(|d| d as usize),
-        seconds: summary["timings"]["total"].as_f64(),
+        dofs: Some(summary.dofs),
+        seconds: finite(Some(summary.timings.total)),
     }
 }
 
-fn response_of(model: &str, summary: &serde_json::Value, load: &Quantity) -> Option<Response> {
-    let points: Vec<PathPoint> = serde_json::from_value(summary["path"].clone()).ok()?;
-    let critical = summary["linear_buckling_load"].as_f64()?;
-    let response_points = points
+/// One model's response in the overlaid plot, from the result of its run.
+fn response_of(model: &str, summary: &RunSummary, load: &Quantity) -> Option<Response> {
+    let critical = Some(summary.linear_buckling_load).filter(|l| l.is_finite())?;
+    let response_points = summary
+        .path
         .iter()
         .map(|p| ResponsePoint {
             load: p.lambda,
@@ -113,10 +107,7 @@ pub fn compare(
     quiet: bool,
 ) -> Result<Comparison, Error> {
     let overrides = parse_model_overrides(models, model_overrides)?;
-    let load = match scene.load.kind {
-        LoadKind::Biaxial => Quantity::biaxial_load(),
-        LoadKind::Strip => Quantity::end_displacement(),
-    };
+    let load = load_quantity(scene);
     // One wavenumber model for every model that needs it: its threshold is computed once.
     let wavenumber_model = WavenumberModel::for_scene(scene)?;
     let options = ThresholdOptions {
@@ -138,7 +129,7 @@ pub fn compare(
         let out = directory.join(model);
         match run_with(&one, &out, &options) {
             Ok(report) => {
-                rows.push(row_of(model, &report.summary, &report.outcome));
+                rows.push(row_of(model, &report.summary));
                 responses.extend(response_of(model, &report.summary, &load));
             }
             Err(error @ Error::Scene { .. }) => return Err(error),
@@ -192,17 +183,6 @@ fn parse_model_overrides(
         .collect()
 }
 
-fn io_error(path: &Path) -> impl FnOnce(std::io::Error) -> Error + '_ {
-    move |error| Error::Io {
-        path: path.display().to_string(),
-        error,
-    }
-}
-
-fn cell(value: Option<f64>) -> String {
-    value.map(|v| format!("{v:.10e}")).unwrap_or_default()
-}
-
 /// `compare.csv`, `compare.json`, `compare.png|svg`.
 fn write_comparison(
     scene: &Scene,
@@ -220,14 +200,14 @@ fn write_comparison(
         let mut line = vec![
             row.model.clone(),
             row.outcome.clone(),
-            cell(row.critical_load),
-            cell(row.critical_load_ratio),
-            cell(row.wavenumber),
-            cell(row.wavelength),
+            number_cell(row.critical_load),
+            number_cell(row.critical_load_ratio),
+            number_cell(row.wavenumber),
+            number_cell(row.wavelength),
         ];
-        line.extend(row.load_at_amplitude.iter().map(|v| cell(*v)));
+        line.extend(row.load_at_amplitude.iter().map(|v| number_cell(*v)));
         line.push(row.dofs.map(|d| d.to_string()).unwrap_or_default());
-        line.push(cell(row.seconds));
+        line.push(number_cell(row.seconds));
         csv.push_str(&line.join(","));
         csv.push('\n');
     }

@@ -4,6 +4,7 @@
 //! API, so that no module reaches up into the crate root for it.
 
 use std::fmt;
+use std::path::Path;
 
 /// Every error the front end reports. Each renders as one line (see [`fmt::Display`]) and maps
 /// to a process exit code with [`Error::exit_code`].
@@ -70,6 +71,14 @@ impl Error {
             key: key.into(),
             message: message.into(),
         }
+    }
+}
+
+/// The [`Error::Io`] of an operation on `path`, for `map_err`.
+pub fn io_error(path: &Path) -> impl FnOnce(std::io::Error) -> Error + '_ {
+    move |error| Error::Io {
+        path: path.display().to_string(),
+        error,
     }
 }
 

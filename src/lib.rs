@@ -25,6 +25,7 @@ pub mod run;
 pub mod run_outputs;
 pub mod scene;
 pub mod setup;
+pub mod study;
 pub mod threshold;
 
 pub use error::{EXIT_INTERRUPTED, Error};

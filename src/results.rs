@@ -1,8 +1,25 @@
-//! What a run produced, shared by the solver side (`run`) and the writers (`run_outputs`),
-//! so that neither imports the other.
+//! What a run produced, typed: the solver side ([`crate::run`]) records the path into a
+//! [`Trace`] and gathers what it knows in a [`RunContext`]; [`RunSummary::new`] decides the
+//! run's result from them — its [`RunOutcome`] and exit code, the threshold with its closed
+//! form, the path, the statistics, the notices — before anything is written; the writers
+//! ([`crate::run_outputs`]) only serialise them. `compare` and `bench` read the summary's
+//! fields ([`RunReport::summary`]).
 
-use crate::output::PathPoint;
+mod build;
+mod summary;
+
+pub use summary::{
+    AnmStepRecord, DetectedBifurcation, FINAL_FIELDS_FILE, FINAL_SURFACE_FILE, LossOfEllipticity,
+    Memory, PathCounts, RunSummary, Timings, VtuFile, fields_file_at,
+};
+
+use crate::output::{PathPoint, Quantity};
+use crate::physics::{Layout, Snapshot};
+use crate::scene::{LoadKind, Scene};
+use crate::threshold::Threshold;
 use std::path::PathBuf;
+use wrinkle_runtime::ModelSpec;
+use wrinkle_runtime::fem::Mesh;
 use wrinkle_runtime::solve::anm::AnmStep;
 use wrinkle_runtime::solve::ellipticity::EllipticityReport;
 use wrinkle_runtime::solve::path::PathResult;
@@ -45,6 +62,14 @@ impl RunOutcome {
         }
     }
 
+    /// The solver failure, if the path ended by one.
+    pub fn failure(&self) -> Option<&str> {
+        match self {
+            RunOutcome::Failed(why) => Some(why),
+            _ => None,
+        }
+    }
+
     /// Why the run did not reach what was asked (`None` when it did).
     pub fn reason(&self) -> Option<&str> {
         match self {
@@ -57,19 +82,67 @@ impl RunOutcome {
     }
 }
 
-/// What `run` produced (also written to `summary.json`).
+/// What `run` produced: its result and the files that hold it.
 #[derive(Debug)]
 pub struct RunReport {
-    /// The summary object.
-    pub summary: serde_json::Value,
+    /// The result (`summary.json` without its list of files), with how the run ended.
+    pub summary: RunSummary,
     /// Files written.
     pub files: Vec<PathBuf>,
-    /// The solver failure, if the path ended by one.
-    pub failure: Option<String>,
-    /// How the run ended.
-    pub outcome: RunOutcome,
-    /// The summary table and the warnings as text (what `wrinkle run` prints at the end).
+    /// The summary table and the notices as text (what `wrinkle run` prints at the end).
     pub summary_text: String,
+}
+
+/// What the run knows besides its trace: the scene, the model and its problem, the threshold,
+/// the costs measured before the outputs.
+pub struct RunContext<'a> {
+    /// The scene.
+    pub scene: &'a Scene,
+    /// The model's specification.
+    pub spec: &'static ModelSpec,
+    /// The fields' meaning.
+    pub layout: &'a Layout,
+    /// The mesh.
+    pub mesh: &'a Mesh,
+    /// The threshold found on the same problem.
+    pub threshold: &'a Threshold,
+    /// Physical amplitude (mm) of the imperfection's response on the unloaded sheet.
+    pub imperfection: f64,
+    /// Free unknowns.
+    pub dofs: usize,
+    /// Seconds before the outputs.
+    pub seconds: f64,
+    /// Peak resident memory of the process during the run, in bytes (Linux; see
+    /// [`crate::memory`]).
+    pub peak_memory: Option<u64>,
+}
+
+impl RunContext<'_> {
+    /// The physical deflection of nodal `values` (the threshold's wavenumber, the scene's
+    /// direction).
+    pub fn snapshot<'b>(&'b self, values: &'b [f64]) -> Snapshot<'b> {
+        Snapshot {
+            mesh: self.mesh,
+            layout: self.layout,
+            values,
+            wavenumber: self.threshold.wavenumber.unwrap_or(0.0),
+            direction: self.scene.model.direction_degrees.to_radians(),
+        }
+    }
+
+    /// The load $`\lambda`$ of the scene, with its labels and unit.
+    pub fn load_quantity(&self) -> Quantity {
+        load_quantity(self.scene)
+    }
+}
+
+/// The load $`\lambda`$ of `scene` with its labels and unit: the biaxial load (N/mm) or the
+/// strip's end displacement (mm).
+pub fn load_quantity(scene: &Scene) -> Quantity {
+    match scene.load.kind {
+        LoadKind::Biaxial => Quantity::biaxial_load(),
+        LoadKind::Strip => Quantity::end_displacement(),
+    }
 }
 
 /// Displacement snapshots along the path for the profile plots and VTU requests.

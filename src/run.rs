@@ -8,12 +8,13 @@
 //! mode $`\varphi`$, with the physical amplitude `solver.perturbation`·h on the unloaded
 //! sheet — and the path is traced from the
 //! equilibrium at $`\lambda = 0`$ with the ANM or Riks. The solver never writes files: a
-//! `PathRecorder` keeps what the outputs need, and [`crate::run_outputs`] writes them.
+//! `PathRecorder` keeps what the outputs need in a [`Trace`], [`RunSummary::new`] decides the
+//! result from it, and [`crate::run_outputs`] writes them.
 
 use crate::error::Error;
 use crate::output::{PathPoint, Progress, ProgressSink, ProgressTarget, Quantity};
 use crate::physics::{Layout, Snapshot};
-pub use crate::results::{RunOutcome, RunReport, Snap, Trace};
+pub use crate::results::{RunContext, RunOutcome, RunReport, RunSummary, Snap, Trace};
 use crate::scene::{Imperfection, LoadKind, PathMethod, Scene, Wavenumber};
 use crate::setup::{build_problem, configure_model, layout_of, unknown_model};
 use crate::threshold::{
@@ -90,7 +91,7 @@ impl ModelVisitor for RunVisitor<'_> {
         let imperfection = add_imperfection(scene, &mut problem, &layout, &threshold)?;
         let _phase = crate::interrupt::PathPhase::enter();
         let trace = trace_path(scene, &problem, &mut factor, &layout, &threshold, quiet)?;
-        let context = crate::run_outputs::RunContext {
+        let context = RunContext {
             scene,
             spec: M::SPEC,
             layout: &layout,
@@ -103,7 +104,8 @@ impl ModelVisitor for RunVisitor<'_> {
                 .then(crate::memory::peak_resident_bytes)
                 .flatten(),
         };
-        crate::run_outputs::write_run(&context, &trace, self.directory)
+        let summary = RunSummary::new(&context, &trace);
+        crate::run_outputs::write_run(&context, &trace, summary, self.directory)
     }
 }
 

@@ -48,10 +48,12 @@
 mod reuse;
 mod search;
 mod steps;
+mod summary;
 mod validity;
 mod wavenumber_model;
 
 pub use reuse::{PriorThreshold, THRESHOLD_SECTIONS};
+pub use summary::{ClosedFormComparison, ThresholdSummary};
 pub use validity::{
     MAX_NON_ELLIPTIC_FRACTION, MIN_ELEMENTS_PER_WAVELENGTH, MIN_WAVELENGTH_OVER_THICKNESS,
     MIN_WAVES_PER_DOMAIN, ValidityWarning, WELL_POSEDNESS_LOAD_RATIO,
@@ -62,7 +64,6 @@ use crate::error::Error;
 use crate::physics::{Layout, Snapshot, wavelength_along_line};
 use crate::scene::{LoadKind, Scene, Wavenumber};
 use crate::setup::{build_problem, configure_model, layout_of, unknown_model};
-use serde_json::json;
 use std::f64::consts::PI;
 use steps::ThresholdSteps;
 use validity::{validity_warnings, well_posedness_beyond};
@@ -284,38 +285,6 @@ fn mode_wavelength<M: EnergyModel>(
     };
     let length = 2.0 * scene.geometry.length_x.hypot(scene.geometry.length_y);
     wavelength_along_line(&snapshot, [peak[0], peak[1]], length)
-}
-
-/// Summary of a threshold as JSON (keys documented in `docs/outputs.md`).
-pub fn threshold_json(scene: &Scene, threshold: &Threshold) -> serde_json::Value {
-    let critical = threshold.critical_load();
-    let closed_form = closed_form_threshold(scene);
-    json!({
-        "model": threshold.model,
-        "critical_load": critical,
-        "load_kind": scene.load.kind.as_str(),
-        "load_unit": load_unit(scene),
-        "n_x": (scene.load.kind == LoadKind::Biaxial).then_some(-critical),
-        "wavenumber": threshold.wavenumber,
-        "wavelength": threshold.wavelength,
-        "wavenumber_mode": threshold.wavenumber_source,
-        "dofs": threshold.dofs,
-        "elements": scene.mesh.elements_x * scene.mesh.elements_y,
-        "buckling_evaluations": threshold.evaluations,
-        "eigen_residual": threshold.buckling.residuals[0],
-        "eigen_iterations": threshold.buckling.eigen_iterations,
-        "closed_form_critical_load": closed_form.map(|(l, _)| l),
-        "closed_form_wavenumber": closed_form.map(|(_, q)| q),
-        "closed_form_relative_difference": closed_form.map(|(l, _)| (critical - l) / l),
-        "elliptic_at_threshold": threshold.ellipticity.elliptic,
-        "ellipticity_margin": threshold.ellipticity.worst_margin,
-        "ellipticity_worst_location": threshold.ellipticity.location,
-        "ellipticity_worst_field": threshold.ellipticity.field,
-        "ellipticity_violated_area_fraction": threshold.ellipticity.violated_fraction,
-        "notes": threshold.notes,
-        "warnings": threshold.warnings,
-        "seconds": threshold.seconds,
-    })
 }
 
 /// Unit of the load $`\lambda`$: N/mm (biaxial) or mm (strip).

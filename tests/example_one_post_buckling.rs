@@ -14,6 +14,7 @@
 
 use std::path::PathBuf;
 use wrinkle::output::PathPoint;
+use wrinkle::results::RunSummary;
 use wrinkle::run::run;
 use wrinkle::scene::Scene;
 
@@ -32,8 +33,8 @@ fn output_directory(name: &str) -> PathBuf {
     dir
 }
 
-fn path_of(summary: &serde_json::Value) -> Vec<PathPoint> {
-    serde_json::from_value(summary["path"].clone()).unwrap()
+fn path_of(summary: &RunSummary) -> Vec<PathPoint> {
+    summary.path.clone()
 }
 
 /// Linear interpolation of `value` at load `lambda` along a path sorted by load.
@@ -85,10 +86,10 @@ fn check_example_one(nx: usize, ny: usize, order: usize) {
     let refs: Vec<&str> = settings.iter().map(String::as_str).collect();
     let dir = output_directory(&format!("example-one-{nx}x{ny}"));
     let report = run(&scene(&refs), &dir, true).unwrap();
-    assert!(report.failure.is_none());
+    assert!(report.summary.outcome.failure().is_none());
     let summary = &report.summary;
     let points = path_of(summary);
-    let lambda_c = summary["linear_buckling_load"].as_f64().unwrap();
+    let lambda_c = summary.linear_buckling_load;
 
     // Residual at every accepted point.
     let worst = points.iter().map(|p| p.residual).fold(0.0, f64::max);
@@ -96,9 +97,10 @@ fn check_example_one(nx: usize, ny: usize, order: usize) {
     // Reached the target.
     assert!(points.last().unwrap().max_amplitude_over_h >= 4.0 - 1e-9);
     // Bifurcation.
-    let detected = summary["detected_bifurcation"]["load"]
-        .as_f64()
-        .expect("bifurcation detected");
+    let detected = summary
+        .detected_bifurcation
+        .expect("bifurcation detected")
+        .load;
     let relative = (detected - lambda_c).abs() / lambda_c;
     eprintln!(
         "{nx}x{ny}: detected bifurcation {detected:.8e}, linear buckling {lambda_c:.8e}, rel {relative:.2e}"
@@ -150,10 +152,10 @@ fn check_example_one(nx: usize, ny: usize, order: usize) {
     );
     eprintln!(
         "compared {compared} Riks points; ANM {} steps / {} factorisations, Riks {} steps / {} factorisations",
-        summary["steps"],
-        summary["statistics"]["factorizations"],
-        riks.summary["steps"],
-        riks.summary["statistics"]["factorizations"]
+        summary.steps,
+        summary.statistics.factorizations,
+        riks.summary.steps,
+        riks.summary.statistics.factorizations
     );
     assert!(compared >= 3);
     let _ = std::fs::remove_dir_all(&dir);
@@ -191,12 +193,7 @@ fn example_one_large_steps_are_corrected_on_the_arc() {
     let coarse = run(&scene(&coarse_settings), &coarse_dir, true).unwrap();
     let fine_dir = output_directory("corrector-fine");
     let fine = run(&scene(&base), &fine_dir, true).unwrap();
-    assert!(
-        coarse.summary["statistics"]["corrections"]
-            .as_u64()
-            .unwrap()
-            > 0
-    );
+    assert!(coarse.summary.statistics.corrections > 0);
     let coarse_points = path_of(&coarse.summary);
     let fine_points = path_of(&fine.summary);
     assert!(coarse_points.iter().all(|p| p.residual <= 1e-6));
@@ -234,7 +231,7 @@ fn example_one_pade_and_plain_series_trace_the_same_curve_forward() {
         settings.push(pade);
         let dir = output_directory(pade);
         let report = run(&scene(&settings), &dir, true).unwrap();
-        assert!(report.failure.is_none(), "{pade}");
+        assert!(report.summary.outcome.failure().is_none(), "{pade}");
         let points = path_of(&report.summary);
         assert!(points.iter().all(|p| p.residual <= 1e-6), "{pade}");
         let last = points.last().unwrap();
@@ -287,24 +284,22 @@ fn riks_through_a_nearly_perfect_bifurcation_stays_on_the_wrinkled_branch() {
     ];
     let anm_dir = output_directory("near-perfect-anm");
     let anm = run(&scene(&base), &anm_dir, true).unwrap();
-    assert!(anm.failure.is_none());
+    assert!(anm.summary.outcome.failure().is_none());
     let mut settings = base.to_vec();
     settings.push("solver.method=riks");
     let riks_dir = output_directory("near-perfect-riks");
     let riks = run(&scene(&settings), &riks_dir, true).unwrap();
     assert!(
-        riks.failure.is_none(),
+        riks.summary.outcome.failure().is_none(),
         "{:?}",
-        riks.summary["outcome_reason"]
+        riks.summary.outcome.reason()
     );
-    let lambda_c = riks.summary["linear_buckling_load"].as_f64().unwrap();
+    let lambda_c = riks.summary.linear_buckling_load;
     let points = path_of(&riks.summary);
     let last = points.last().unwrap();
     assert!(last.max_amplitude_over_h >= 2.0 && last.lambda < 1.25 * lambda_c);
     assert!(points.iter().all(|p| p.residual <= 1e-6));
-    let rejected = riks.summary["statistics"]["rejected_steps"]
-        .as_u64()
-        .unwrap();
+    let rejected = riks.summary.statistics.rejected_steps;
     assert!(rejected >= 1, "the guard halved no step");
     let compared = assert_on_curve(
         points.iter().filter(|p| p.lambda > 1.01 * lambda_c),
@@ -315,10 +310,7 @@ fn riks_through_a_nearly_perfect_bifurcation_stays_on_the_wrinkled_branch() {
     assert!(compared >= 3, "{compared}");
     eprintln!(
         "Riks: {} steps, {} rejected, {} factorisations; ANM {} steps",
-        riks.summary["steps"],
-        rejected,
-        riks.summary["statistics"]["factorizations"],
-        anm.summary["steps"]
+        riks.summary.steps, rejected, riks.summary.statistics.factorizations, anm.summary.steps
     );
     let _ = std::fs::remove_dir_all(&anm_dir);
     let _ = std::fs::remove_dir_all(&riks_dir);
@@ -346,12 +338,12 @@ fn the_perfect_problem_stops_past_the_threshold_and_says_why() {
         settings.push(&method_setting);
         let dir = output_directory(&format!("perfect-{method}"));
         let report = run(&scene(&settings), &dir, true).unwrap();
-        let wrinkle::results::RunOutcome::Incomplete(reason) = &report.outcome else {
-            panic!("{method}: {:?}", report.outcome);
+        let wrinkle::results::RunOutcome::Incomplete(reason) = &report.summary.outcome else {
+            panic!("{method}: {:?}", report.summary.outcome);
         };
         assert!(reason.contains("no imperfection"), "{reason}");
-        assert_eq!(report.outcome.exit_code(), 3);
-        let lambda_c = report.summary["linear_buckling_load"].as_f64().unwrap();
+        assert_eq!(report.summary.outcome.exit_code(), 3);
+        let lambda_c = report.summary.linear_buckling_load;
         let points = path_of(&report.summary);
         assert!(points.iter().all(|p| p.max_amplitude_over_h == 0.0));
         let last = points.last().unwrap();
@@ -360,15 +352,15 @@ fn the_perfect_problem_stops_past_the_threshold_and_says_why() {
             "{method}: {}",
             last.lambda
         );
-        assert!(report.summary["steps"].as_u64().unwrap() < 20);
+        assert!(report.summary.steps < 20);
         let _ = std::fs::remove_dir_all(&dir);
     }
     let mut settings = base.to_vec();
     settings.push("solver.max_load=0.1");
     let dir = output_directory("perfect-max-load");
     let report = run(&scene(&settings), &dir, true).unwrap();
-    let wrinkle::results::RunOutcome::Incomplete(reason) = &report.outcome else {
-        panic!("{:?}", report.outcome);
+    let wrinkle::results::RunOutcome::Incomplete(reason) = &report.summary.outcome else {
+        panic!("{:?}", report.summary.outcome);
     };
     assert!(reason.starts_with("maximum load reached"), "{reason}");
     assert!(path_of(&report.summary).last().unwrap().lambda >= 0.1);
@@ -394,7 +386,7 @@ fn assert_close_pair(values: &[f64], tolerance: f64, what: &str) {
 
 /// `wrinkle run` of example 1 at 16 × 8 (N = 15) with `method` and `setting`: the summary and
 /// the last path point.
-fn last_point_16x8(method: &str, setting: &str) -> (serde_json::Value, PathPoint) {
+fn last_point_16x8(method: &str, setting: &str) -> (RunSummary, PathPoint) {
     let settings = [
         "mesh.nx=16",
         "mesh.ny=8",
@@ -410,7 +402,7 @@ fn last_point_16x8(method: &str, setting: &str) -> (serde_json::Value, PathPoint
         setting.replace(['.', '='], "-")
     ));
     let report = run(&scene(&settings), &dir, true).unwrap();
-    assert!(report.failure.is_none());
+    assert!(report.summary.outcome.failure().is_none());
     let _ = std::fs::remove_dir_all(&dir);
     let last = path_of(&report.summary).pop().unwrap();
     (report.summary, last)
@@ -449,7 +441,7 @@ fn both_methods_stop_at_max_load_with_the_same_amplitude() {
     let mut amplitudes = Vec::new();
     for method in ["anm", "riks"] {
         let (summary, last) = last_point_16x8(method, "solver.max_load=0.1");
-        assert_eq!(summary["stop"], "maximum load reached", "{method}");
+        assert_eq!(summary.stop, "maximum load reached", "{method}");
         assert!(
             (0.1..=0.1 * (1.0 + 1e-9)).contains(&last.lambda),
             "{method}: last λ = {}",

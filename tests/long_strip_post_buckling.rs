@@ -43,7 +43,7 @@ fn run_strip(name: &str, settings: &[&str]) -> (Scene, RunReport) {
         std::env::temp_dir().join(format!("wrinkle-test-strip-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     let report = run(&scene, &dir, true).unwrap();
-    assert!(report.failure.is_none());
+    assert!(report.summary.outcome.failure().is_none());
     let _ = std::fs::remove_dir_all(&dir);
     (scene, report)
 }
@@ -58,30 +58,27 @@ fn strip_stays_on_the_stable_branch(perturbation: &str, pade: bool) {
     );
     let summary = &report.summary;
 
-    let steps = summary["anm_steps"].as_array().unwrap();
-    let redone: u64 = steps
-        .iter()
-        .map(|s| s["crossings_redone"].as_u64().unwrap())
-        .sum();
+    let steps = &summary.anm_steps;
+    let redone: usize = steps.iter().map(|s| s.crossings_redone).sum();
     assert!(redone >= 1, "the crossing guard never acted");
     for s in steps {
-        assert_eq!(s["negative_pivots"].as_u64(), Some(0), "{s}");
+        assert_eq!(s.negative_pivots, Some(0), "{s:?}");
         // A Padé end off the path is shortened, never corrected: a corrected Padé end once
         // left 6 of its step's 10 interior points off the path and overshot the target to 6.2 h.
-        let pade_extended = s["step_length"].as_f64() > s["series_step_length"].as_f64();
+        let pade_extended = s.step_length > s.series_step_length;
         if pade_extended {
-            assert_eq!(s["correction_iterations"].as_u64(), Some(0), "{s}");
+            assert_eq!(s.correction_iterations, 0, "{s:?}");
         }
     }
 
-    let points: Vec<PathPoint> = serde_json::from_value(summary["path"].clone()).unwrap();
+    let points = &summary.path;
     let worst = points.iter().map(|p| p.residual).fold(0.0, f64::max);
     assert!(worst <= 1e-6, "worst relative residual {worst:e}");
     let last = points.last().unwrap();
     let target = scene.solver.max_amplitude_over_thickness;
     assert!(last.max_amplitude_over_h >= target && last.max_amplitude_over_h < 1.2 * target);
-    let lambda_c = summary["linear_buckling_load"].as_f64().unwrap();
-    let detected = summary["detected_bifurcation"]["load"].as_f64().unwrap();
+    let lambda_c = summary.linear_buckling_load;
+    let detected = summary.detected_bifurcation.unwrap().load;
     assert!(
         (detected - lambda_c).abs() < 1e-4 * lambda_c,
         "{detected} vs {lambda_c}"
@@ -116,7 +113,7 @@ fn strip_path_16x8(method: &str) -> Vec<PathPoint> {
             &format!("solver.method={method}"),
         ],
     );
-    serde_json::from_value(report.summary["path"].clone()).unwrap()
+    report.summary.path
 }
 
 /// Riks resolves the strip's knee: the arc length, dominated by the in-plane displacements,
@@ -137,8 +134,8 @@ fn long_strip_riks_resolves_the_knee_and_agrees_with_the_anm() {
             (pair[1].lambda, pair[1].max_amplitude_over_h)
         );
     }
-    let riks_load = wrinkle::bench::load_at_amplitude(&riks, 1.0).unwrap();
-    let anm_load = wrinkle::bench::load_at_amplitude(&anm, 1.0).unwrap();
+    let riks_load = wrinkle::study::load_at_amplitude(&riks, 1.0).unwrap();
+    let anm_load = wrinkle::study::load_at_amplitude(&anm, 1.0).unwrap();
     assert!(
         (riks_load - anm_load).abs() < 1e-4 * anm_load,
         "λ(a/h = 1): Riks {riks_load}, ANM {anm_load}"

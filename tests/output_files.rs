@@ -75,7 +75,7 @@ fn run_directory_removes_the_previous_run_and_keeps_foreign_files() {
         first.record([first.path(name)]).unwrap();
     }
     let summary = first
-        .write_summary(serde_json::json!({"model": "a"}))
+        .write_summary(&serde_json::json!({"model": "a"}))
         .unwrap();
     let written: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(summary).unwrap()).unwrap();

@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 use wrinkle::output::report::render_html;
 use wrinkle::output::{
-    Quantity, Report, ReportFigure, Response, ResponsePoint, RunSummary, Severity, Warning,
+    Quantity, Report, ReportFigure, Response, ResponsePoint, Severity, SummaryTable, Warning,
     plot_response, write_report,
 };
 
@@ -15,8 +15,8 @@ fn scratch_dir(test: &str) -> PathBuf {
     dir
 }
 
-fn default_scene_summary() -> RunSummary {
-    RunSummary {
+fn default_scene_summary() -> SummaryTable {
+    SummaryTable {
         model: "reference-envelope".into(),
         method: "ANM".into(),
         dofs: 4704,

@@ -85,8 +85,9 @@ fn buckle_json_has_the_threshold_keys_and_the_scene() {
     for s in ["mesh.nx=8", "mesh.ny=4"] {
         scene.apply_override(s).unwrap();
     }
-    let report = wrinkle::commands::buckle(&scene, true).unwrap();
-    let json = wrinkle::cli::buckle_json(&scene, &report);
+    let threshold = wrinkle::commands::buckle(&scene, true).unwrap();
+    let report = wrinkle::threshold::ThresholdSummary::new(&scene, &threshold);
+    let json = serde_json::to_value(wrinkle::cli::buckle_json(&scene, &report)).unwrap();
     let object = json.as_object().unwrap();
     assert_eq!(object["model"], "reference-envelope");
     for key in [

@@ -298,48 +298,60 @@ fn run_path_case(row: &mut Row, scene: &Scene) {
         Ok(report) => report,
     };
     let summary = &report.summary;
-    let critical = summary["linear_buckling_load"].as_f64();
+    // As in `summary.json`, where a non-finite number is `null`.
+    let critical = Some(summary.linear_buckling_load).filter(|c| c.is_finite());
     row.critical_load = critical;
-    row.wavelength = summary["wavelength"].as_f64();
-    row.warnings = summary["threshold"]["warnings"]
-        .as_array()
-        .map(|w| {
-            w.iter()
-                .filter_map(|w| w["check"].as_str().map(str::to_string))
-                .collect()
-        })
-        .unwrap_or_default();
-    if scene.model.name == "reference-envelope" {
-        row.ratio_to_eq42 = summary["closed_form_critical_load"]
-            .as_f64()
+    row.wavelength = summary.wavelength.filter(|l| l.is_finite());
+    row.warnings = summary
+        .threshold
+        .warnings
+        .iter()
+        .map(|w| w.check.to_string())
+        .collect();
+    if scene.model.name == wrinkle_models::REFERENCE_MODEL {
+        row.ratio_to_eq42 = summary
+            .closed_form_critical_load
             .zip(critical)
             .map(|(exact, c)| c / exact);
     }
-    // From the summary's `outcome` key and the outcome's Debug text (which carries the
-    // reason), so that a new outcome variant needs no change here.
-    row.outcome = format!("run:{}", summary["outcome"].as_str().unwrap_or("unknown"));
-    if report.outcome != RunOutcome::Reached {
-        row.message = format!("{:?}", report.outcome);
+    // From the outcome's name and its Debug text (which carries the reason), so that a new
+    // outcome variant needs no change here.
+    let outcome = &summary.outcome;
+    row.outcome = format!("run:{}", outcome.name());
+    if *outcome != RunOutcome::Reached {
+        row.message = format!("{outcome:?}");
     }
-    if !critical.is_some_and(|c| c.is_finite() && c > 0.0) {
+    if !critical.is_some_and(|c| c > 0.0) {
         row.problems.push(format!(
             "linear buckling load {:?} is not a positive number",
-            summary["linear_buckling_load"]
+            summary.linear_buckling_load
         ));
     }
-    if report.outcome != RunOutcome::Reached && row.message.len() < 20 {
-        row.problems.push(format!(
-            "run outcome without a reason: {:?}",
-            report.outcome
-        ));
+    if *outcome != RunOutcome::Reached && row.message.len() < 20 {
+        row.problems
+            .push(format!("run outcome without a reason: {outcome:?}"));
     }
-    // A NaN becomes `null` in JSON: a path point that does not parse had a non-finite number.
-    match serde_json::from_value::<Vec<PathPoint>>(summary["path"].clone()) {
-        Err(error) => row
+    match summary.path.iter().find(|p| !finite_point(p)) {
+        Some(point) => row
             .problems
-            .push(format!("path with a non-finite number: {error}")),
-        Ok(points) => check_path(row, scene, &points),
+            .push(format!("path with a non-finite number: {point:?}")),
+        None => check_path(row, scene, &summary.path),
     }
+}
+
+/// Whether every number of a path point is finite.
+fn finite_point(point: &PathPoint) -> bool {
+    [
+        point.lambda,
+        point.max_amplitude,
+        point.max_amplitude_over_h,
+        point.centre_amplitude_over_h,
+        point.residual,
+    ]
+    .into_iter()
+    .chain(point.n_x)
+    .chain(point.closed_form_amplitude_over_h)
+    .all(f64::is_finite)
 }
 
 fn check_path(row: &mut Row, scene: &Scene, points: &[PathPoint]) {

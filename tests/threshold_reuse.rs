@@ -85,9 +85,9 @@ fn example_one_run_reusing_buckle_json_has_the_searched_wavenumber_and_the_same_
     );
     // The same curve: the load at physical amplitude h.
     let at_h = |summary: &serde_json::Value| {
-        wrinkle::bench::measure(summary)
-            .load_at_amplitude_1
-            .expect("the path reaches a/h = 1")
+        let points: Vec<wrinkle::output::PathPoint> =
+            serde_json::from_value(summary["path"].clone()).unwrap();
+        wrinkle::study::load_at_amplitude(&points, 1.0).expect("the path reaches a/h = 1")
     };
     let (cold_load, reused_load) = (at_h(&cold), at_h(&reused));
     assert!(

@@ -192,20 +192,28 @@ impl RunDirectory {
         self.write_manifest()
     }
 
-    /// Writes `summary` (a JSON object) as `summary.json` with the key `files` set to every
-    /// recorded file plus `summary.json` itself, and returns its path.
+    /// Writes `summary` (serialised as a JSON object, without a `files` key) as `summary.json`
+    /// with the key `files` set to every recorded file plus `summary.json` itself, and returns
+    /// its path.
     ///
-    /// Errors: `summary` is not an object, or the file cannot be written.
-    pub fn write_summary(&mut self, mut summary: serde_json::Value) -> io::Result<PathBuf> {
+    /// Errors: `summary` does not serialise as an object, or the file cannot be written.
+    pub fn write_summary(&mut self, summary: &impl serde::Serialize) -> io::Result<PathBuf> {
+        /// The summary's keys and `files`.
+        #[derive(serde::Serialize)]
+        struct WithFiles<'a, S> {
+            #[serde(flatten)]
+            summary: &'a S,
+            files: &'a [String],
+        }
         let path = self.path(SUMMARY_FILE);
         if !self.written.iter().any(|name| name == SUMMARY_FILE) {
             self.written.push(SUMMARY_FILE.to_string());
         }
-        let object = summary
-            .as_object_mut()
-            .ok_or_else(|| invalid("summary", "must be a JSON object"))?;
-        object.insert("files".into(), serde_json::json!(self.written));
-        write_json(&path, &summary)?;
+        let with_files = WithFiles {
+            summary,
+            files: &self.written,
+        };
+        write_json(&path, &with_files)?;
         Ok(path)
     }
 
@@ -303,8 +311,8 @@ impl RunDirectory {
     }
 }
 
-/// Writes a JSON value, pretty-printed, atomically.
-pub fn write_json(path: &Path, value: &serde_json::Value) -> io::Result<()> {
+/// Writes a value as JSON, pretty-printed, atomically.
+pub fn write_json(path: &Path, value: &impl serde::Serialize) -> io::Result<()> {
     write_atomically(path, |writer| {
         serde_json::to_writer_pretty(&mut *writer, value)?;
         writer.write_all(b"\n")

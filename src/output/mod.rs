@@ -32,7 +32,7 @@
 //! ```
 //! use wrinkle::output::{
 //!     FieldData, LoadMarker, Quantity, Report, ReportFigure, Response, ResponsePoint,
-//!     RunDirectory, RunSummary, plot_response, write_report,
+//!     RunDirectory, SummaryTable, plot_response, write_report,
 //! };
 //! # fn main() -> std::io::Result<()> {
 //! # let out = std::env::temp_dir().join(format!("wrinkle-doc-{}", std::process::id()));
@@ -59,7 +59,7 @@
 //! // The load and its unit go into every VTU file as field data:
 //! let _field_data = FieldData::load(0.12, &load.unit);
 //!
-//! let summary = RunSummary {
+//! let summary = SummaryTable {
 //!     model: "reference-envelope".into(),
 //!     method: "ANM".into(),
 //!     dofs: 4704,
@@ -87,7 +87,7 @@
 //! report.files = directory.files().to_vec();
 //! write_report(&report_path, &report)?;
 //! // Last: summary.json with `files`, the list of everything written.
-//! directory.write_summary(serde_json::json!({ "model": "reference-envelope" }))?;
+//! directory.write_summary(&serde_json::json!({ "model": "reference-envelope" }))?;
 //! # std::fs::remove_dir_all(&out)?;
 //! # Ok(())
 //! # }
@@ -115,7 +115,7 @@ pub use plots::{
 pub use progress::{Progress, ProgressSink, ProgressTarget, SearchProgress};
 pub use quantity::Quantity;
 pub use report::{
-    Report, ReportFigure, RunSummary, Severity, SummaryRow, Warning, format_rows, write_report,
+    Report, ReportFigure, Severity, SummaryRow, SummaryTable, Warning, format_rows, write_report,
 };
 pub use vtu::{
     FieldData, FieldValue, PointArray, write_fields_vtu, write_fields_vtu_with_cells,

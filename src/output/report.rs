@@ -3,7 +3,7 @@
 //! network access, no external style sheet or script, readable on screen and on paper.
 //!
 //! The same summary rows print as a plain-text table for the terminal
-//! ([`RunSummary::to_text`]).
+//! ([`SummaryTable::to_text`]).
 
 use super::files::write_atomically;
 use super::quantity::{Quantity, format_significant};
@@ -37,9 +37,11 @@ impl SummaryRow {
     }
 }
 
-/// The numbers a researcher looks for first, already computed by the run.
+/// The summary table of a run: the numbers a researcher looks for first, already computed by
+/// the run (the result's [`crate::results::RunSummary`]), as the report and the terminal show
+/// them.
 #[derive(Clone, Debug, PartialEq)]
-pub struct RunSummary {
+pub struct SummaryTable {
     /// Model name, e.g. `"reference-envelope"`.
     pub model: String,
     /// Solver, e.g. `"ANM"` or `"Riks"`.
@@ -78,7 +80,7 @@ pub struct RunSummary {
     pub reached_target: bool,
 }
 
-impl RunSummary {
+impl SummaryTable {
     /// The summary as table rows, in the order of the report.
     pub fn rows(&self) -> Vec<SummaryRow> {
         let mut rows = vec![
@@ -304,7 +306,7 @@ pub struct Report {
 
 impl Report {
     /// A report with the summary's rows, status and title `"MODEL"`, and nothing else.
-    pub fn from_summary(summary: &RunSummary) -> Self {
+    pub fn from_summary(summary: &SummaryTable) -> Self {
         Report {
             title: summary.model.clone(),
             subtitle: String::new(),
