@@ -6,7 +6,6 @@
 //! temporary file in the destination's directory (`.NAME.PID-N.wrinkle-tmp[.EXT]`), flushes it to
 //! disk and renames it over the destination, which is atomic on one file system.
 
-use super::path_table::with_path;
 use super::{OutputError, invalid};
 use std::ffi::OsString;
 use std::fs::{self, File};
@@ -39,6 +38,11 @@ pub const LEGACY_OUTPUT_PATTERNS: [&str; 14] = [
     "wrinkles.svg",
     "comparison.*",
 ];
+
+/// Prefixes an I/O error with the file it concerns.
+fn with_path(path: &Path, error: io::Error) -> io::Error {
+    io::Error::new(error.kind(), format!("{}: {error}", path.display()))
+}
 
 /// A temporary path beside `path`: same directory, hidden, unique in this process, keeping the
 /// extension (some encoders choose the format from it).

@@ -92,11 +92,6 @@ fn format_number(value: f64) -> String {
     }
 }
 
-/// Prefixes an I/O error with the file it concerns.
-pub(crate) fn with_path(path: &Path, error: io::Error) -> io::Error {
-    io::Error::new(error.kind(), format!("{}: {error}", path.display()))
-}
-
 #[cfg(test)]
 mod tests {
     use super::format_number;
