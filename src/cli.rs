@@ -250,7 +250,13 @@ fn run(
     }
     let directory = PathBuf::from(&scene.output.directory);
     crate::interrupt::install();
-    commands::run(&scene, &directory, quiet, prior.as_ref())?;
+    let report = commands::run(&scene, &directory, quiet, prior.as_ref())?;
+    // The summary table goes to stdout whatever the outcome (a closed stdout is not an error).
+    let _ = print_stdout(&report.summary_text);
+    let written = format!("(outputs written to {})", directory.display());
+    if let Some(error) = report.summary.outcome.error(&written) {
+        return Err(error);
+    }
     eprintln!("outputs in {}", directory.display());
     Ok(())
 }

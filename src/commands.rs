@@ -1,9 +1,14 @@
-//! The commands behind the CLI, as library functions: each takes a scene and returns its
-//! results; the CLI only parses arguments and prints. Dependencies go one way:
-//! `cli → commands → {threshold, run, compare} → {setup, physics, output}`.
+//! What the subcommands compute, as library functions that take a scene and return results;
+//! nothing here parses arguments or prints — [`crate::cli`] does both.
+//!
+//! `buckle`, `run` and `models` are here; `compare`, `bench` and `analytic` are the entry points
+//! of their own modules ([`crate::compare::compare`], [`crate::bench::bench`],
+//! [`crate::analytic::analyse`]). Dependencies go one way:
+//! `cli → {commands, compare, bench, analytic} → {threshold, run} → {results, run_outputs} →
+//! {setup, physics, output}`, and `compare` and `bench` share [`crate::study`].
 
 use crate::error::Error;
-use crate::run::{RunOutcome, RunReport};
+use crate::results::RunReport;
 use crate::scene::Scene;
 use crate::threshold::{PriorThreshold, Threshold, ThresholdOptions};
 use std::path::Path;
@@ -15,8 +20,10 @@ pub fn buckle(scene: &Scene, quiet: bool) -> Result<Threshold, Error> {
 }
 
 /// Path following of a scene (`wrinkle run`), writing its outputs into `output_directory`.
-/// A run that does not reach what was asked is an `Err` with its exit code (1 failure,
-/// 3 incomplete, 4 validity), but only after every output computed so far was written.
+/// The report comes back whatever the outcome once every output computed was written; a run
+/// that does not reach what was asked says so in [`crate::results::RunOutcome::error`] (exit
+/// codes 1 failure, 3 incomplete, 4 validity, 130 interrupted). An `Err` means the run could
+/// not be done at all (a scene error, a failed threshold, an output that cannot be written).
 ///
 /// With `prior` (`--threshold FILE`), the wavenumber search is replaced by one analysis at the
 /// wavenumber of an earlier threshold of the same scene.
@@ -31,20 +38,7 @@ pub fn run(
         prior,
         wavenumber_model: None,
     };
-    let report = crate::run::run_with(scene, output_directory, &options)?;
-    // The summary table goes to stdout whatever the outcome (a closed stdout is not an error).
-    {
-        use std::io::Write;
-        let _ = std::io::stdout().write_all(report.summary_text.as_bytes());
-    }
-    let written = format!("(outputs written to {})", output_directory.display());
-    match &report.summary.outcome {
-        RunOutcome::Reached => Ok(report),
-        RunOutcome::Failed(why) => Err(Error::Solver(format!("{why} {written}"))),
-        RunOutcome::Incomplete(why) => Err(Error::Incomplete(format!("{why} {written}"))),
-        RunOutcome::Invalid(why) => Err(Error::Invalid(format!("{why} {written}"))),
-        RunOutcome::Interrupted(why) => Err(Error::Interrupted(format!("{why} {written}"))),
-    }
+    crate::run::run_with(scene, output_directory, &options)
 }
 
 /// The model registry: `(name, description, fields with roles, parameters)` for every model.

@@ -4,10 +4,20 @@
 //! wrinkled membranes declared as energy densities, discretised with Q8 finite elements and
 //! solved by linear buckling analysis and path following (ANM, Riks).
 //!
-//! This crate is the front end: [`scene`] parses and validates scene files (TOML plus
-//! `--set KEY=VALUE` overrides), [`closed_form`] holds the independent analytic truths of the
-//! clamped rectangle (THEORY.md §8) and [`analytic`] reports them for a scene, [`commands`] glues
-//! scenes to the physics, and [`cli`] is the command-line interface of the `wrinkle` binary.
+//! This crate is the front end, in layers that import only downwards:
+//! * [`cli`] parses arguments and prints; [`commands`] (`buckle`, `run`, `models`),
+//!   [`compare`], [`bench`](mod@bench) and [`analytic`] are what the subcommands compute; `compare` and
+//!   `bench` share [`study`] (loads at amplitudes, crossings, relative errors);
+//! * [`threshold`] finds the wrinkling threshold (its wavenumber by the model's capability and
+//!   the scene's `model.wavenumber_model`), [`run`] the path: scene → problem → threshold →
+//!   imperfection → path → result;
+//! * [`results`] decides a run's result ([`results::RunSummary`]: outcome and exit code,
+//!   threshold with its closed form, path, statistics, notices) before anything is written;
+//!   [`run_outputs`] writes it with the writers of [`output`];
+//! * [`setup`] builds the problem of a scene, [`physics`] reads what the model's fields mean from
+//!   their roles, [`scene`] parses and validates scene files (TOML plus `--set KEY=VALUE`),
+//!   [`closed_form`] holds the independent analytic truths of the clamped rectangle
+//!   (THEORY.md §8); [`error`], [`interrupt`] and [`memory`] serve every layer.
 
 pub mod analytic;
 pub mod bench;

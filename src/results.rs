@@ -13,6 +13,7 @@ pub use summary::{
     Memory, PathCounts, RunSummary, Timings, VtuFile, fields_file_at,
 };
 
+use crate::error::Error;
 use crate::output::{PathPoint, Quantity};
 use crate::physics::{Layout, Snapshot};
 use crate::scene::{LoadKind, Scene};
@@ -67,6 +68,19 @@ impl RunOutcome {
         match self {
             RunOutcome::Failed(why) => Some(why),
             _ => None,
+        }
+    }
+
+    /// The error a run with this outcome ends the process with (its exit code,
+    /// [`Error::exit_code`]), its reason followed by `detail`; `None` when the run reached what
+    /// was asked.
+    pub fn error(&self, detail: &str) -> Option<Error> {
+        match self {
+            RunOutcome::Reached => None,
+            RunOutcome::Failed(why) => Some(Error::Solver(format!("{why} {detail}"))),
+            RunOutcome::Incomplete(why) => Some(Error::Incomplete(format!("{why} {detail}"))),
+            RunOutcome::Invalid(why) => Some(Error::Invalid(format!("{why} {detail}"))),
+            RunOutcome::Interrupted(why) => Some(Error::Interrupted(format!("{why} {detail}"))),
         }
     }
 
