@@ -384,39 +384,7 @@ impl Figure {
             .y_label_formatter(&|v| error_tick(*v))
             .draw()?;
         for series in &panel.series {
-            // In the order of the sweep (coarse to fine, low to high order, loose to tight), so
-            // the line shows what each step of the setting buys and costs.
-            let points = &series.points;
-            let style = series.color.stroke_width((2.5 * scale).round() as u32);
-            let line: Vec<(f64, f64)> = points.iter().map(|p| (p.0, p.1)).collect();
-            if series.dashed {
-                chart.draw_series(DashedLineSeries::new(line, px(12.0), px(7.0), style))?;
-            } else {
-                // Segment by segment: plotters mitres the joins of a wide polyline, which
-                // draws long spikes where a sweep turns back sharply.
-                chart.draw_series(
-                    line.windows(2)
-                        .map(|pair| PathElement::new(vec![pair[0], pair[1]], style)),
-                )?;
-                chart.draw_series(
-                    points
-                        .iter()
-                        .map(|p| Circle::new((p.0, p.1), px(4.5), series.color.filled())),
-                )?;
-            }
-            let tags = points.iter().filter(|_| !series.dashed);
-            chart.draw_series(tags.map(|p| {
-                Text::new(
-                    p.2.clone(),
-                    (p.0, p.1),
-                    font(14.0)
-                        .color(&series.color)
-                        .pos(plotters::style::text_anchor::Pos::new(
-                            plotters::style::text_anchor::HPos::Left,
-                            plotters::style::text_anchor::VPos::Bottom,
-                        )),
-                )
-            }))?;
+            draw_series(&mut chart, series, scale)?;
         }
         if panel.series.iter().all(|s| s.points.is_empty()) {
             let (width, height) = area.dim_in_pixel();
@@ -428,4 +396,51 @@ impl Figure {
         }
         Ok(())
     }
+}
+
+/// The log–log chart of a panel.
+type LogChart<'a, DB> = ChartContext<'a, DB, Cartesian2d<LogCoord<f64>, LogCoord<f64>>>;
+
+/// One series on `chart`: its line in the order of the sweep (coarse to fine, low to high
+/// order, loose to tight, so the line shows what each step of the setting buys and costs), its
+/// points and their tags, or a dashed line without either.
+fn draw_series<DB: DrawingBackend>(
+    chart: &mut LogChart<'_, DB>,
+    series: &Series,
+    scale: f64,
+) -> Draw<(), DB> {
+    let px = |length: f64| (length * scale).round() as i32;
+    let font = |size: f64| (FONT, size * scale).into_font();
+    let points = &series.points;
+    let style = series.color.stroke_width((2.5 * scale).round() as u32);
+    let line: Vec<(f64, f64)> = points.iter().map(|p| (p.0, p.1)).collect();
+    if series.dashed {
+        chart.draw_series(DashedLineSeries::new(line, px(12.0), px(7.0), style))?;
+    } else {
+        // Segment by segment: plotters mitres the joins of a wide polyline, which draws long
+        // spikes where a sweep turns back sharply.
+        chart.draw_series(
+            line.windows(2)
+                .map(|pair| PathElement::new(vec![pair[0], pair[1]], style)),
+        )?;
+        chart.draw_series(
+            points
+                .iter()
+                .map(|p| Circle::new((p.0, p.1), px(4.5), series.color.filled())),
+        )?;
+    }
+    let tags = points.iter().filter(|_| !series.dashed);
+    chart.draw_series(tags.map(|p| {
+        Text::new(
+            p.2.clone(),
+            (p.0, p.1),
+            font(14.0)
+                .color(&series.color)
+                .pos(plotters::style::text_anchor::Pos::new(
+                    plotters::style::text_anchor::HPos::Left,
+                    plotters::style::text_anchor::VPos::Bottom,
+                )),
+        )
+    }))?;
+    Ok(())
 }

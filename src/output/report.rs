@@ -87,38 +87,81 @@ impl SummaryTable {
             SummaryRow::new("model", &self.model, format!("solver: {}", self.method)),
             SummaryRow::new("unknowns", group_thousands(self.dofs), ""),
         ];
-        if let Some(q) = self.wavenumber.filter(|q| q.is_finite() && *q > 0.0) {
+        rows.extend(self.wavenumber_rows());
+        rows.extend(self.critical_load_row());
+        rows.extend(self.final_rows());
+        rows.push(SummaryRow::new(
+            "cost",
+            format!(
+                "{} steps, {} factorisations",
+                self.steps, self.factorizations
+            ),
+            format!("{} s", format_significant(self.seconds, 3)),
+        ));
+        if let Some(bytes) = self.peak_memory_bytes {
             rows.push(SummaryRow::new(
+                "peak memory",
+                format!("{} MB", format_significant(bytes as f64 / 1e6, 3)),
+                "resident, during the run",
+            ));
+        }
+        rows.push(SummaryRow::new(
+            "stop",
+            &self.stop,
+            if self.reached_target {
+                "reached what was asked"
+            } else {
+                "did not reach what was asked"
+            },
+        ));
+        rows
+    }
+
+    /// $`Q`$ and $`2\pi/Q`$ of an envelope model.
+    fn wavenumber_rows(&self) -> Vec<SummaryRow> {
+        let Some(q) = self.wavenumber.filter(|q| q.is_finite() && *q > 0.0) else {
+            return Vec::new();
+        };
+        vec![
+            SummaryRow::new(
                 "wavenumber Q",
                 format!("{} /mm", format_significant(q, 5)),
                 "",
-            ));
-            rows.push(SummaryRow::new(
+            ),
+            SummaryRow::new(
                 "wavelength 2π/Q",
                 format!("{} mm", format_significant(std::f64::consts::TAU / q, 4)),
                 "",
-            ));
-        }
-        if let Some(critical) = self.critical_load {
-            let note = match self.closed_form_critical_load {
-                Some(closed) => format!(
-                    "closed form{}: {} (difference {} %)",
-                    if self.closed_form_source.is_empty() {
-                        String::new()
-                    } else {
-                        format!(" {}", self.closed_form_source)
-                    },
-                    self.load.format_value(closed),
-                    signed(format_significant(100.0 * (critical - closed) / closed, 2))
-                ),
-                None => "no closed form for this case".to_string(),
-            };
-            rows.push(SummaryRow::new(
-                "critical load λ_c",
-                self.load.format_value(critical),
-                note,
-            ));
-        }
+            ),
+        ]
+    }
+
+    /// $`\lambda_c`$ with the closed form beside it.
+    fn critical_load_row(&self) -> Option<SummaryRow> {
+        let critical = self.critical_load?;
+        let note = match self.closed_form_critical_load {
+            Some(closed) => format!(
+                "closed form{}: {} (difference {} %)",
+                if self.closed_form_source.is_empty() {
+                    String::new()
+                } else {
+                    format!(" {}", self.closed_form_source)
+                },
+                self.load.format_value(closed),
+                signed(format_significant(100.0 * (critical - closed) / closed, 2))
+            ),
+            None => "no closed form for this case".to_string(),
+        };
+        Some(SummaryRow::new(
+            "critical load λ_c",
+            self.load.format_value(critical),
+            note,
+        ))
+    }
+
+    /// The final load (with $`\lambda/\lambda_c`$) and amplitude (in mm, with the target).
+    fn final_rows(&self) -> Vec<SummaryRow> {
+        let mut rows = Vec::new();
         if let Some(load) = self.final_load {
             let note = self
                 .critical_load
@@ -148,30 +191,6 @@ impl SummaryTable {
                 notes.join("; "),
             ));
         }
-        rows.push(SummaryRow::new(
-            "cost",
-            format!(
-                "{} steps, {} factorisations",
-                self.steps, self.factorizations
-            ),
-            format!("{} s", format_significant(self.seconds, 3)),
-        ));
-        if let Some(bytes) = self.peak_memory_bytes {
-            rows.push(SummaryRow::new(
-                "peak memory",
-                format!("{} MB", format_significant(bytes as f64 / 1e6, 3)),
-                "resident, during the run",
-            ));
-        }
-        rows.push(SummaryRow::new(
-            "stop",
-            &self.stop,
-            if self.reached_target {
-                "reached what was asked"
-            } else {
-                "did not reach what was asked"
-            },
-        ));
         rows
     }
 

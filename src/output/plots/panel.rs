@@ -236,6 +236,53 @@ pub(crate) fn draw_panel<DB: DrawingBackend>(
     panel: &Panel,
     scale: Scale,
 ) -> DrawResult<PanelLayout, DB> {
+    let mut chart = draw_axes(area, panel, scale)?;
+    draw_data(&mut chart, panel, scale)?;
+    let (pixel_x, pixel_y) = chart.plotting_area().get_pixel_range();
+    let base = area.get_base_pixel();
+    let plot_left = (pixel_x.start - base.0) as f64 / scale.0;
+    let plot_right = (pixel_x.end - base.0) as f64 / scale.0;
+    let plot_top = (pixel_y.start - base.1) as f64 / scale.0;
+    let plot_bottom = (pixel_y.end - base.1) as f64 / scale.0;
+    draw_vertical_title(
+        area,
+        &panel.y.title,
+        (Y_TITLE_LEFT, 0.5 * (plot_top + plot_bottom)),
+        scale,
+    )?;
+    draw_tags(
+        area,
+        panel,
+        &chart,
+        (plot_left, plot_right, plot_top),
+        scale,
+    )?;
+    if !panel.title.is_empty() {
+        draw_centred_text(
+            area,
+            &panel.title,
+            PANEL_TITLE_SIZE,
+            (0.5 * (plot_left + plot_right), 4.0),
+            BLACK,
+            scale,
+        )?;
+    }
+    Ok(PanelLayout {
+        title: panel.title.clone(),
+        plot_area: [pixel_x.start, pixel_y.start, pixel_x.end, pixel_y.end],
+        x_range: panel.x.range,
+        y_range: panel.y.range,
+        axis_titles: (panel.x.title.clone(), panel.y.title.clone()),
+    })
+}
+
+/// The chart of `panel` on `area` with its grid, ticks and the x axis' title: room on top for
+/// the panel's title and the verticals' tags, on the left for the y ticks and title.
+fn draw_axes<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    panel: &Panel,
+    scale: Scale,
+) -> DrawResult<Chart<'a, DB>, DB> {
     let (width, height) = area.dim_in_pixel();
     let (width, height) = (width as f64 / scale.0, height as f64 / scale.0);
     let tag_rows = if panel.verticals.iter().any(|v| !v.tag.is_empty()) {
@@ -271,11 +318,20 @@ pub(crate) fn draw_panel<DB: DrawingBackend>(
         .x_label_formatter(&x_format)
         .y_label_formatter(&y_format)
         .draw()?;
+    Ok(chart)
+}
 
+/// The verticals, the lines clipped to the box with their dots, and the frame on top.
+fn draw_data<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    panel: &Panel,
+    scale: Scale,
+) -> DrawResult<(), DB> {
+    let (x_range, y_range) = (panel.x.range, panel.y.range);
     for vertical in &panel.verticals {
         if (x_range.0..=x_range.1).contains(&vertical.x) {
             draw_polyline(
-                &mut chart,
+                chart,
                 &[(vertical.x, y_range.0), (vertical.x, y_range.1)],
                 vertical.color,
                 vertical.dash,
@@ -286,9 +342,9 @@ pub(crate) fn draw_panel<DB: DrawingBackend>(
     }
     for line in &panel.lines {
         for run in clip_polyline(&line.points, x_range, y_range) {
-            draw_polyline(&mut chart, &run, line.color, line.dash, line.width, scale)?;
+            draw_polyline(chart, &run, line.color, line.dash, line.width, scale)?;
         }
-        let dots = spaced_dots(&chart, &line.dots, (x_range, y_range), scale);
+        let dots = spaced_dots(chart, &line.dots, (x_range, y_range), scale);
         chart.draw_series(
             dots.into_iter()
                 .map(|p| Circle::new(p, scale.px(DOT_RADIUS), line.color.filled())),
@@ -305,43 +361,7 @@ pub(crate) fn draw_panel<DB: DrawingBackend>(
         ],
         scale.stroke(FRAME_COLOR, 1.2),
     )))?;
-
-    let (pixel_x, pixel_y) = chart.plotting_area().get_pixel_range();
-    let base = area.get_base_pixel();
-    let plot_left = (pixel_x.start - base.0) as f64 / scale.0;
-    let plot_right = (pixel_x.end - base.0) as f64 / scale.0;
-    let plot_top = (pixel_y.start - base.1) as f64 / scale.0;
-    let plot_bottom = (pixel_y.end - base.1) as f64 / scale.0;
-    draw_vertical_title(
-        area,
-        &panel.y.title,
-        (Y_TITLE_LEFT, 0.5 * (plot_top + plot_bottom)),
-        scale,
-    )?;
-    draw_tags(
-        area,
-        panel,
-        &chart,
-        (plot_left, plot_right, plot_top),
-        scale,
-    )?;
-    if !panel.title.is_empty() {
-        draw_centred_text(
-            area,
-            &panel.title,
-            PANEL_TITLE_SIZE,
-            (0.5 * (plot_left + plot_right), 4.0),
-            BLACK,
-            scale,
-        )?;
-    }
-    Ok(PanelLayout {
-        title: panel.title.clone(),
-        plot_area: [pixel_x.start, pixel_y.start, pixel_x.end, pixel_y.end],
-        x_range,
-        y_range,
-        axis_titles: (panel.x.title.clone(), panel.y.title.clone()),
-    })
+    Ok(())
 }
 
 type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;

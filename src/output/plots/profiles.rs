@@ -40,6 +40,54 @@ const PANEL_HEIGHT: f64 = 560.0;
 ///
 /// Errors: no profile with a finite point, a failure writing the files.
 pub fn plot_profiles(stem: &Path, title: &str, plot: &ProfilePlot) -> io::Result<PlotOutput> {
+    let (x_range, y_range) = profile_ranges(plot)?;
+    let count = plot.profiles.len();
+    let lines = plot
+        .profiles
+        .iter()
+        .enumerate()
+        .map(|(index, profile)| Line {
+            points: profile.points.clone(),
+            color: sequential_color(index, count),
+            dash: Dash::Solid,
+            width: 2.2,
+            dots: Vec::new(),
+        })
+        .collect();
+    let legend = profile_legend(plot);
+    let widest = legend
+        .iter()
+        .map(|entry| text_size(&entry.label, LEGEND_SIZE).0)
+        .fold(0.0, f64::max);
+    let legend_width = (widest + 90.0).min(0.4 * FIGURE_WIDTH);
+    let figure = PanelFigure {
+        title: title.to_string(),
+        panels: vec![Panel {
+            title: plot.location.clone(),
+            x: Axis {
+                title: plot.abscissa.axis_title(),
+                range: x_range,
+            },
+            y: Axis {
+                title: plot.ordinate.axis_title(),
+                range: y_range,
+            },
+            lines,
+            verticals: Vec::new(),
+        }],
+        legend,
+        placement: LegendPlacement::Right {
+            width: legend_width,
+        },
+        width: FIGURE_WIDTH,
+        panel_height: PANEL_HEIGHT,
+    };
+    render(stem, &figure)
+}
+
+/// The abscissa range of the finite points, and the ordinate range from 0 (or below) with 6 %
+/// room; an error when no profile has a finite point.
+fn profile_ranges(plot: &ProfilePlot) -> io::Result<((f64, f64), (f64, f64))> {
     let finite = plot
         .profiles
         .iter()
@@ -75,21 +123,13 @@ pub fn plot_profiles(stem: &Path, title: &str, plot: &ProfilePlot) -> io::Result
     } else {
         (-1.0, 1.0)
     };
+    Ok((x_range, y_range))
+}
+
+/// One entry per labelled profile, in its colour.
+fn profile_legend(plot: &ProfilePlot) -> Vec<LegendEntry> {
     let count = plot.profiles.len();
-    let lines = plot
-        .profiles
-        .iter()
-        .enumerate()
-        .map(|(index, profile)| Line {
-            points: profile.points.clone(),
-            color: sequential_color(index, count),
-            dash: Dash::Solid,
-            width: 2.2,
-            dots: Vec::new(),
-        })
-        .collect();
-    let legend: Vec<LegendEntry> = plot
-        .profiles
+    plot.profiles
         .iter()
         .enumerate()
         .filter(|(_, profile)| !profile.label.is_empty())
@@ -100,33 +140,5 @@ pub fn plot_profiles(stem: &Path, title: &str, plot: &ProfilePlot) -> io::Result
             width: 2.5,
             marker: false,
         })
-        .collect();
-    let widest = legend
-        .iter()
-        .map(|entry| text_size(&entry.label, LEGEND_SIZE).0)
-        .fold(0.0, f64::max);
-    let legend_width = (widest + 90.0).min(0.4 * FIGURE_WIDTH);
-    let figure = PanelFigure {
-        title: title.to_string(),
-        panels: vec![Panel {
-            title: plot.location.clone(),
-            x: Axis {
-                title: plot.abscissa.axis_title(),
-                range: x_range,
-            },
-            y: Axis {
-                title: plot.ordinate.axis_title(),
-                range: y_range,
-            },
-            lines,
-            verticals: Vec::new(),
-        }],
-        legend,
-        placement: LegendPlacement::Right {
-            width: legend_width,
-        },
-        width: FIGURE_WIDTH,
-        panel_height: PANEL_HEIGHT,
-    };
-    render(stem, &figure)
+        .collect()
 }

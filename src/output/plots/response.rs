@@ -444,6 +444,23 @@ fn padded((low, high): (f64, f64), below: f64, above: f64) -> (f64, f64) {
 /// Errors: no response, or one that [`plot_response`] would reject; all responses must share
 /// the load quantity's unit.
 pub fn plot_comparison(stem: &Path, title: &str, responses: &[Response]) -> io::Result<PlotOutput> {
+    let first = comparable(responses)?;
+    let figure = PanelFigure {
+        title: title.to_string(),
+        panels: vec![
+            comparison_against_load(first, responses),
+            comparison_against_ratio(first, responses),
+        ],
+        legend: comparison_legend(responses),
+        placement: LegendPlacement::Below,
+        width: WIDE_FIGURE,
+        panel_height: PANEL_HEIGHT,
+    };
+    render(stem, &figure)
+}
+
+/// The first of `responses`, once each is valid and all share its load unit.
+fn comparable(responses: &[Response]) -> io::Result<&Response> {
     let Some(first) = responses.first() else {
         return Err(invalid("comparison", "needs at least one response"));
     };
@@ -459,7 +476,16 @@ pub fn plot_comparison(stem: &Path, title: &str, responses: &[Response]) -> io::
             ));
         }
     }
-    let color = |index: usize| CATEGORICAL[index % CATEGORICAL.len()];
+    Ok(first)
+}
+
+/// The colour of the `index`-th model of a comparison.
+fn comparison_color(index: usize) -> RGBColor {
+    CATEGORICAL[index % CATEGORICAL.len()]
+}
+
+/// One entry per model with its $`\lambda_c`$, then the thresholds' dotted lines.
+fn comparison_legend(responses: &[Response]) -> Vec<LegendEntry> {
     let mut legend: Vec<LegendEntry> = responses
         .iter()
         .enumerate()
@@ -469,7 +495,7 @@ pub fn plot_comparison(stem: &Path, title: &str, responses: &[Response]) -> io::
                 response.model,
                 response.load.format_value(response.critical_load)
             ),
-            color: color(index),
+            color: comparison_color(index),
             dash: Dash::Solid,
             width: 2.5,
             marker: true,
@@ -482,19 +508,27 @@ pub fn plot_comparison(stem: &Path, title: &str, responses: &[Response]) -> io::
         width: 1.6,
         marker: false,
     });
-    let lines = |ratio: bool| -> Vec<Line> {
-        responses
-            .iter()
-            .enumerate()
-            .map(|(index, response)| Line {
-                points: response.max_points(ratio),
-                color: color(index),
-                dash: Dash::Solid,
-                width: 2.5,
-                dots: response.step_ends(ratio),
-            })
-            .collect()
-    };
+    legend
+}
+
+/// Each model's largest amplitude against the load (`ratio` false) or its own
+/// $`\lambda/\lambda_c`$ (`ratio` true), in its colour with its step ends.
+fn comparison_lines(responses: &[Response], ratio: bool) -> Vec<Line> {
+    responses
+        .iter()
+        .enumerate()
+        .map(|(index, response)| Line {
+            points: response.max_points(ratio),
+            color: comparison_color(index),
+            dash: Dash::Solid,
+            width: 2.5,
+            dots: response.step_ends(ratio),
+        })
+        .collect()
+}
+
+/// The left panel: amplitudes against the load, each model's $`\lambda_c`$ dotted.
+fn comparison_against_load(first: &Response, responses: &[Response]) -> Panel {
     let (low, high) = finite_extent(responses.iter().flat_map(|r| {
         r.points
             .iter()
@@ -502,62 +536,57 @@ pub fn plot_comparison(stem: &Path, title: &str, responses: &[Response]) -> io::
             .chain(std::iter::once(r.critical_load))
     }));
     let load_range = padded((low.min(0.0), high), 0.0, 0.02);
-    let ratio_range = zoom_range(
-        responses
-            .iter()
-            .map(Response::final_ratio)
-            .fold(f64::NEG_INFINITY, f64::max),
-    );
-    let left_lines = lines(false);
-    let right_lines = lines(true);
-    let amplitude = first.amplitude.axis_title();
-    let left = Panel {
+    let lines = comparison_lines(responses, false);
+    Panel {
         title: "against the load".into(),
         x: Axis {
             title: first.load.axis_title(),
             range: load_range,
         },
         y: Axis {
-            title: amplitude.clone(),
-            range: amplitude_range(&left_lines, load_range),
+            title: first.amplitude.axis_title(),
+            range: amplitude_range(&lines, load_range),
         },
-        lines: left_lines,
+        lines,
         verticals: responses
             .iter()
             .enumerate()
             .map(|(index, response)| VerticalLine {
                 x: response.critical_load,
-                color: color(index),
+                color: comparison_color(index),
                 dash: Dash::Short,
                 tag: String::new(),
             })
             .collect(),
-    };
-    let right = Panel {
+    }
+}
+
+/// The right panel: amplitudes against each model's $`\lambda/\lambda_c`$ from
+/// [`ZOOM_START_RATIO`].
+fn comparison_against_ratio(first: &Response, responses: &[Response]) -> Panel {
+    let ratio_range = zoom_range(
+        responses
+            .iter()
+            .map(Response::final_ratio)
+            .fold(f64::NEG_INFINITY, f64::max),
+    );
+    let lines = comparison_lines(responses, true);
+    Panel {
         title: format!("against each model's λ / λ_c (≥ {ZOOM_START_RATIO})"),
         x: Axis {
             title: "load ratio λ / λ_c".into(),
             range: ratio_range,
         },
         y: Axis {
-            title: amplitude,
-            range: amplitude_range(&right_lines, ratio_range),
+            title: first.amplitude.axis_title(),
+            range: amplitude_range(&lines, ratio_range),
         },
-        lines: right_lines,
+        lines,
         verticals: vec![VerticalLine {
             x: 1.0,
             color: BUCKLING_COLOR,
             dash: Dash::Short,
             tag: "λ = λ_c".into(),
         }],
-    };
-    let figure = PanelFigure {
-        title: title.to_string(),
-        panels: vec![left, right],
-        legend,
-        placement: LegendPlacement::Below,
-        width: WIDE_FIGURE,
-        panel_height: PANEL_HEIGHT,
-    };
-    render(stem, &figure)
+    }
 }
