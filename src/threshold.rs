@@ -45,24 +45,28 @@
 //!   membrane's envelope) that is pointwise unstable over most of the area at
 //!   [`WELL_POSEDNESS_LOAD_RATIO`]$`\,\lambda_c`$ on the fundamental branch.
 
+mod result;
 mod reuse;
+mod scene_quantities;
 mod search;
 mod steps;
 mod summary;
 mod validity;
 mod wavenumber_model;
 
+pub use result::{Threshold, ValidityWarning};
 pub use reuse::{PriorThreshold, THRESHOLD_SECTIONS};
+pub use scene_quantities::{closed_form_threshold, load_unit, wavenumber_range};
 pub use summary::{ClosedFormComparison, ThresholdSummary};
 pub use validity::{
     MAX_NON_ELLIPTIC_FRACTION, MIN_ELEMENTS_PER_WAVELENGTH, MIN_WAVELENGTH_OVER_THICKNESS,
-    MIN_WAVES_PER_DOMAIN, ValidityWarning, WELL_POSEDNESS_LOAD_RATIO,
+    MIN_WAVES_PER_DOMAIN, WELL_POSEDNESS_LOAD_RATIO,
 };
 pub use wavenumber_model::{CarrierThreshold, WAVENUMBER_MODEL_KEY, WavenumberModel};
 
 use crate::error::Error;
 use crate::physics::{Layout, Snapshot, wavelength_along_line};
-use crate::scene::{LoadKind, Scene, Wavenumber};
+use crate::scene::{Scene, Wavenumber};
 use crate::setup::{build_problem, configure_model, layout_of, unknown_model};
 use std::f64::consts::PI;
 use steps::ThresholdSteps;
@@ -72,70 +76,6 @@ use wrinkle_runtime::EnergyModel;
 use wrinkle_runtime::linear::factor::SparseFactorization;
 use wrinkle_runtime::problem::Problem;
 use wrinkle_runtime::solve::buckling::LinearBuckling;
-use wrinkle_runtime::solve::ellipticity::EllipticityReport;
-use wrinkle_runtime::solve::wavenumber::WavenumberEvaluation;
-
-/// The threshold of a scene and how it was found.
-#[derive(Clone, Debug)]
-pub struct Threshold {
-    /// Registry name of the model.
-    pub model: &'static str,
-    /// Linear buckling at the threshold (critical loads, modes, pre-buckling state and rate).
-    pub buckling: LinearBuckling,
-    /// Strong ellipticity at the threshold.
-    pub ellipticity: EllipticityReport,
-    /// Load the buckling analysis linearised about (0, or a shift, see `robust_buckling`).
-    pub reference_load: f64,
-    /// Wavenumber $`Q`$ (1/mm) of an envelope model.
-    pub wavenumber: Option<f64>,
-    /// Wavelength (mm): $`2\pi/Q`$, or read from the plate's mode.
-    pub wavelength: Option<f64>,
-    /// `"fixed"`, `"auto"` (minimised), `"auto (MODEL)"` (the minimiser of `MODEL`, the scene's
-    /// `model.wavenumber_model`), `"auto (reused)"` or `"mode"` (plate).
-    pub wavenumber_source: String,
-    /// Linear buckling analyses done.
-    pub evaluations: usize,
-    /// The wavenumber search, when there was one.
-    pub search: Vec<WavenumberEvaluation>,
-    /// Notes for the user (a parameter not used, where the wavenumber came from).
-    pub notes: Vec<String>,
-    /// Failed validity checks.
-    pub warnings: Vec<ValidityWarning>,
-    /// Free unknowns.
-    pub dofs: usize,
-    /// Seconds spent.
-    pub seconds: f64,
-}
-
-impl Threshold {
-    /// Critical load $`\lambda_c`$.
-    pub fn critical_load(&self) -> f64 {
-        self.buckling.critical_loads[0]
-    }
-
-    /// The first failed validity check the scene does not accept (`validity.accept`), as the
-    /// reason of exit code 4 — shared by `buckle` and `run`.
-    pub fn validity_failure(&self, validity: &crate::scene::ValiditySpec) -> Option<String> {
-        self.warnings
-            .iter()
-            .find(|w| !validity.accepts(w.check))
-            .map(|w| {
-                format!(
-                    "{}: {} (`validity.accept = [\"{}\"]` accepts it)",
-                    w.check, w.message, w.check
-                )
-            })
-    }
-}
-
-/// Wavenumber range $`[2\pi/L_\min, 2\pi/(20h)]`$ (1/mm) the search scans.
-pub fn wavenumber_range(scene: &Scene) -> (f64, f64) {
-    let shortest = scene.geometry.length_x.min(scene.geometry.length_y);
-    let thickness = scene.material.thickness;
-    let low = 2.0 * PI / shortest;
-    let high = 2.0 * PI / (MIN_WAVELENGTH_OVER_THICKNESS * thickness);
-    (low, high.max(4.0 * low))
-}
 
 /// How a threshold is found, besides its scene.
 #[derive(Clone, Copy, Debug, Default)]
@@ -285,32 +225,6 @@ fn mode_wavelength<M: EnergyModel>(
     };
     let length = 2.0 * scene.geometry.length_x.hypot(scene.geometry.length_y);
     wavelength_along_line(&snapshot, [peak[0], peak[1]], length)
-}
-
-/// Unit of the load $`\lambda`$: N/mm (biaxial) or mm (strip).
-pub fn load_unit(scene: &Scene) -> &'static str {
-    match scene.load.kind {
-        LoadKind::Biaxial => "N/mm",
-        LoadKind::Strip => "mm",
-    }
-}
-
-/// The closed-form threshold (THEORY.md §8, eq. 42 minimised) and its wavenumber when the scene
-/// is a clamped rectangle under biaxial load with waves along X.
-pub fn closed_form_threshold(scene: &Scene) -> Option<(f64, f64)> {
-    (scene.load.kind == LoadKind::Biaxial && scene.model.direction_degrees == 0.0)
-        .then(|| scene.clamped_rectangle().critical_point())
-        .flatten()
-}
-
-/// The critical load of eq. (42) at the wavenumber `q` (the neutral curve), where the closed
-/// form applies to the scene ([`closed_form_threshold`]): a guess the analysis at a fixed $`Q`$
-/// is shifted about (0.98 times it, kept only when the tangent there has no negative pivot, so
-/// a guess above the model's own threshold costs one factorisation and changes nothing). On
-/// example 1 at 40 × 20 it takes the analysis from 55 Lanczos operator applications to 16.
-pub(super) fn closed_form_load_at(scene: &Scene, q: f64) -> Option<f64> {
-    closed_form_threshold(scene)?;
-    Some(scene.clamped_rectangle().neutral_curve(q)).filter(|l| l.is_finite() && *l > 0.0)
 }
 
 struct ThresholdVisitor<'a> {

@@ -8,7 +8,8 @@
 //! (the reference itself, or $`\lambda_c`$ at a fixed wavenumber) has no place on a log axis
 //! and is left out.
 
-use super::{Bench, BenchRow, Method, Sweep};
+use super::plan::{Method, Sweep};
+use super::rows::{Bench, BenchRow};
 use crate::output::{write_atomically_via_path, write_bytes_atomically};
 use plotters::coord::Shift;
 use plotters::element::DashedPathElement;

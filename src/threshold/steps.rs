@@ -3,11 +3,10 @@
 //! one, a plate's mode), the buckling analysis at a wavenumber with its shifted second attempt,
 //! and the notes and hints they leave for the user.
 
+use super::reuse::PriorThreshold;
+use super::scene_quantities::{closed_form_load_at, closed_form_threshold, wavenumber_range};
 use super::search::{SCAN_POINTS, two_level_search};
-use super::{
-    CarrierThreshold, PriorThreshold, WavenumberModel, closed_form_load_at, closed_form_threshold,
-    wavenumber_range,
-};
+use super::wavenumber_model::{CarrierThreshold, WavenumberModel};
 use crate::error::Error;
 use crate::output::{ProgressSink, SearchProgress};
 use crate::scene::{LoadKind, Scene, Wavenumber};

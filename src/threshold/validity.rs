@@ -1,7 +1,7 @@
 //! The validity checks of a threshold (module documentation of [`crate::threshold`]): scale
 //! separation, strong ellipticity, mode resolution and well-posedness beyond the threshold.
 
-use super::Threshold;
+use super::result::{Threshold, ValidityWarning};
 use crate::physics::Layout;
 use crate::scene::Scene;
 use wrinkle_runtime::EnergyModel;
@@ -18,15 +18,6 @@ pub const MIN_WAVES_PER_DOMAIN: f64 = 4.0;
 pub const MAX_NON_ELLIPTIC_FRACTION: f64 = 1e-2;
 /// Fewest Q8 elements per wavelength for a resolved plate mode.
 pub const MIN_ELEMENTS_PER_WAVELENGTH: f64 = 8.0;
-
-/// A validity check that failed.
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
-pub struct ValidityWarning {
-    /// Short identifier: `scale_separation`, `ellipticity`, `mode_resolution`.
-    pub check: &'static str,
-    /// What was found and what it means.
-    pub message: String,
-}
 
 /// Load factor, relative to $`\lambda_c`$, at which the fundamental branch is checked for
 /// pointwise well-posedness.
