@@ -159,8 +159,8 @@ fn land_last_point<M: EnergyModel>(
         )
     };
     result.statistics.add_linear_work(&linearization.statistics);
-    result.statistics.total_seconds += clock.elapsed().as_secs_f64();
     let Some(landed) = landed else {
+        result.statistics.total_seconds += clock.elapsed().as_secs_f64();
         return;
     };
     let event = PathEvent {
@@ -170,8 +170,10 @@ fn land_last_point<M: EnergyModel>(
         relative_residual: landed.relative_residual,
         predicted_bifurcation: None,
     };
+    // The observer records the landed point (its recording time is part of the path's).
     observer.replace_last(&below, &event);
     result.last = landed.state;
+    result.statistics.total_seconds += clock.elapsed().as_secs_f64();
 }
 
 /// The last two points reported to the observer (the step of the last one too).
