@@ -280,6 +280,9 @@ fn plane_wave_density(model: &ComplexEnvelope, r: f64, k: f64, phase: f64, direc
                 Derivative::Value => None,
                 Derivative::X => Some(c),
                 Derivative::Y => Some(s),
+                Derivative::XX | Derivative::XY | Derivative::YY => {
+                    unreachable!("the model reads first derivatives only")
+                }
             };
             match (field, along) {
                 ("a", None) => r * phase.cos(),

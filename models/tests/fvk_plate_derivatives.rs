@@ -49,6 +49,9 @@ fn term_jet(term: usize, state: &[f64; 15]) -> Vec<f64> {
                 Derivative::Value => 0,
                 Derivative::X => 1,
                 Derivative::Y => 2,
+                Derivative::XX | Derivative::XY | Derivative::YY => {
+                    unreachable!("the model reads first derivatives only")
+                }
             };
             state[3 * e.field + d]
         })

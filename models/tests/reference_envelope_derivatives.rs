@@ -60,6 +60,9 @@ fn term_jet(term: usize, state: &[f64; 9]) -> Vec<f64> {
                 Derivative::Value => 0,
                 Derivative::X => 1,
                 Derivative::Y => 2,
+                Derivative::XX | Derivative::XY | Derivative::YY => {
+                    unreachable!("the model reads first derivatives only")
+                }
             };
             state[3 * e.field + d]
         })

@@ -2,7 +2,8 @@
 //! and what every part of the runtime (assembly, Newton, buckling, ANM, Riks) consumes.
 //!
 //! A model is an energy density $`\psi(\mathbf{j}; \mathbf{p})`$ of a *jet* $`\mathbf{j}`$ —
-//! the values and first derivatives of its fields at a point — and named parameters
+//! the values and derivatives (first, and second where the element supplies them) of its
+//! fields at a point — and named parameters
 //! $`\mathbf{p}`$. The density is a sum of *terms*, each integrated with its own quadrature
 //! rule and depending on a subset of the jet:
 //! $$`\Pi(U) = \sum_t \int_\Omega \psi_t(\mathbf{j}_t(U))\,d\Omega .`$$
@@ -22,8 +23,10 @@ pub use wrinkle_contract::{Derivative, FieldRole, JetEntry};
 
 /// Most fields a model may have (element buffers are on the stack).
 pub const MAX_FIELDS: usize = 8;
-/// Longest term jet: one entry per field and [`Derivative`].
-pub const MAX_JET: usize = Derivative::ALL.len() * MAX_FIELDS;
+/// Longest term jet: a value and two derivatives for each of [`MAX_FIELDS`] fields (the
+/// kernels' stack buffers are this long; [`crate::problem::Problem::new`] refuses a longer
+/// term jet, which only second derivatives of many fields can make).
+pub const MAX_JET: usize = 3 * MAX_FIELDS;
 
 /// Quadrature rule a term is integrated with on the Q8 element.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -94,7 +97,7 @@ impl ModelSpec {
     pub fn field_with_role(&self, role: FieldRole) -> Option<usize> {
         self.field_roles.iter().position(|r| *r == role)
     }
-    /// Whether any term needs the first derivatives of `field`.
+    /// Whether any term needs a derivative (first or second) of `field`.
     pub fn needs_gradient(&self, field: usize) -> bool {
         self.jet
             .iter()

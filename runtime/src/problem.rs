@@ -24,6 +24,36 @@ pub enum ProblemError {
     /// Load on a missing edge.
     #[error(transparent)]
     Load(#[from] crate::fem::loads::UnknownEdgeError),
+    /// The model's jet asks for a derivative the mesh's element does not supply (a second
+    /// derivative on the $`C^0`$ Q8 element): refused before any work.
+    #[error(
+        "model `{model}` asks for `{field}.{derivative}`, which the {element} element does not supply",
+        derivative = derivative.name()
+    )]
+    UnsupportedDerivative {
+        /// Model name.
+        model: &'static str,
+        /// The element of the mesh.
+        element: &'static str,
+        /// The field whose derivative is asked for.
+        field: &'static str,
+        /// The derivative asked for.
+        derivative: crate::model::Derivative,
+    },
+    /// A term's jet is longer than the kernels' stack buffers.
+    #[error(
+        "model `{model}`: term `{term}` reads {length} jet entries; at most {max} are supported"
+    )]
+    JetTooLong {
+        /// Model name.
+        model: &'static str,
+        /// Term name.
+        term: &'static str,
+        /// Its jet length.
+        length: usize,
+        /// The limit ([`crate::model::MAX_JET`]).
+        max: usize,
+    },
     /// The model has more fields than the assembler's element buffers hold.
     #[error("model `{model}` has {count} fields; at most {max} are supported")]
     TooManyFields {
@@ -48,7 +78,8 @@ pub struct Problem<M: EnergyModel> {
 }
 
 impl<M: EnergyModel> Problem<M> {
-    /// Builds dofs, assembler and load vectors.
+    /// Builds dofs, assembler and load vectors, after checking that the element supplies every
+    /// derivative the model's jet reads and that the kernels' buffers hold the model.
     pub fn new(
         model: M,
         mesh: Arc<Mesh>,
@@ -64,6 +95,7 @@ impl<M: EnergyModel> Problem<M> {
                 max: crate::fem::assembly::MAX_FIELDS,
             });
         }
+        check_model_fits::<M>()?;
         let dofs = Arc::new(DofMap::new(&mesh, field_count, conditions)?);
         let loads = LoadVectors::assemble(&mesh, &dofs, tractions, body_loads)?;
         let assembler = Assembler::new(model, mesh, dofs)?;
@@ -237,6 +269,37 @@ impl<M: EnergyModel> Problem<M> {
             max_or_nan((0..nf).map(|f| residual_norm[f].sqrt() / scale[f].sqrt().max(floor)));
         (residual, relative)
     }
+}
+
+/// Refuses, before any work, a model whose jet reads a derivative the Q8 element does not
+/// supply, or whose term jets overflow the kernels' buffers.
+fn check_model_fits<M: EnergyModel>() -> Result<(), ProblemError> {
+    let spec = M::SPEC;
+    if let Some(entry) = spec
+        .jet
+        .iter()
+        .find(|entry| crate::fem::element::derivative_row(entry.derivative).is_none())
+    {
+        return Err(ProblemError::UnsupportedDerivative {
+            model: spec.name,
+            element: "Q8",
+            field: spec.fields[entry.field],
+            derivative: entry.derivative,
+        });
+    }
+    if let Some(term) = spec
+        .terms
+        .iter()
+        .find(|term| term.jet.len() > crate::model::MAX_JET)
+    {
+        return Err(ProblemError::JetTooLong {
+            model: spec.name,
+            term: term.name,
+            length: term.jet.len(),
+            max: crate::model::MAX_JET,
+        });
+    }
+    Ok(())
 }
 
 /// Relative floor of the per-field residual scales in [`Problem::relative_residual`].

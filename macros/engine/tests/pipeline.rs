@@ -388,7 +388,7 @@ fn validation_collects_several_errors() {
             fields: u, w, w;
             parameters: k;
             let a = k * q;
-            energy one = sin(w) + w.xx + k.x;
+            energy one = sin(w) + w.xxx + k.x;
             energy two [gauss] = tan(k) * w;
         }
     });
@@ -396,7 +396,7 @@ fn validation_collects_several_errors() {
         "duplicate name `w`",
         "unknown identifier `q`",
         "`sin` can only be applied to parameters and constants",
-        "unsupported derivative `w.xx`",
+        "unsupported derivative `w.xxx`",
         "unsupported derivative: `k` is a parameter",
         "unknown quadrature rule `gauss`",
         "unknown function `tan`",

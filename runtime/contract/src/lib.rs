@@ -9,8 +9,11 @@
 //! engine turns a value into tokens itself, from [`FieldRole::variant_name`] and
 //! [`Derivative::variant_name`].
 //!
-//! A new derivative (the second derivatives $`\partial^2 f/\partial X^2`$, … of a later
-//! element) or a new role is one variant plus its spelling in the lists below.
+//! A new derivative or a new role is one variant plus its spelling in the lists below. Which
+//! derivatives a *discretisation* can supply is not said here: the DSL accepts every spelling
+//! below, and the runtime refuses, when a problem is built, a model whose jet asks its element
+//! for a derivative the element does not supply (the second derivatives need a $`C^1`$ element
+//! such as the cubic Hermite line).
 
 #![no_std]
 
@@ -68,8 +71,9 @@ macro_rules! spelled_enum {
 
 spelled_enum! {
     /// Which derivative of a field a jet entry holds. Its spelling is the suffix the DSL
-    /// writes after the field's name and a dot (`w.x`); the value itself, written `w`, has the
-    /// empty spelling.
+    /// writes after the field's name and a dot (`w.x`, `w.xx`): one letter per
+    /// differentiation, in the order X before Y; the value itself, written `w`, has the empty
+    /// spelling.
     #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
     pub enum Derivative {
         /// The field value $`f`$.
@@ -78,12 +82,18 @@ spelled_enum! {
         X => "x",
         /// $`\partial f/\partial Y`$.
         Y => "y",
+        /// $`\partial^2 f/\partial X^2`$ (a beam's curvature $`v''`$; a plate's $`w_{,XX}`$).
+        XX => "xx",
+        /// $`\partial^2 f/\partial X\,\partial Y`$ (the twist $`w_{,XY}`$).
+        XY => "xy",
+        /// $`\partial^2 f/\partial Y^2`$.
+        YY => "yy",
     }
 }
 
 impl Derivative {
-    /// How many times the field is differentiated: 0 for the value, 1 for `x` and `y` (the
-    /// length of the spelling, one letter per differentiation).
+    /// How many times the field is differentiated: 0 for the value, 1 for `x` and `y`, 2 for
+    /// `xx`, `xy` and `yy` (the length of the spelling, one letter per differentiation).
     pub const fn order(self) -> usize {
         self.name().len()
     }
@@ -165,5 +175,10 @@ mod tests {
         assert_eq!(Derivative::Value.order(), 0);
         assert_eq!(Derivative::X.order(), 1);
         assert_eq!(Derivative::Y.order(), 1);
+        assert_eq!(Derivative::XX.order(), 2);
+        assert_eq!(Derivative::XY.order(), 2);
+        assert_eq!(Derivative::YY.order(), 2);
+        assert_eq!(Derivative::from_name("xy"), Some(Derivative::XY));
+        assert_eq!(Derivative::from_name("yx"), None);
     }
 }

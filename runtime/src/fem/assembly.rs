@@ -82,6 +82,11 @@ pub struct Assembler<M: EnergyModel> {
 impl<M: EnergyModel> Assembler<M> {
     /// Prepares element values (only the rules and derivatives the model's terms use), element
     /// dof lists, the sparsity pattern and the scatter tables.
+    ///
+    /// # Panics
+    /// If the model's jet asks for a derivative the element does not supply
+    /// ([`derivative_row`]); [`crate::problem::Problem::new`] checks this first and returns
+    /// [`crate::problem::ProblemError::UnsupportedDerivative`].
     pub fn new(model: M, mesh: Arc<Mesh>, dofs: Arc<DofMap>) -> Result<Self, JacobianError> {
         let spec = M::SPEC;
         let mut value_sets: Vec<(QuadratureRule, Vec<ElementValues>)> = Vec::new();
@@ -114,7 +119,11 @@ impl<M: EnergyModel> Assembler<M> {
             let jet: Vec<JetEntry> = term.jet.iter().map(|&i| spec.jet[i]).collect();
             let rows = jet
                 .iter()
-                .map(|e| (e.field, derivative_row(e.derivative)))
+                .map(|e| {
+                    let row = derivative_row(e.derivative)
+                        .expect("Problem::new refuses derivatives the element does not supply");
+                    (e.field, row)
+                })
                 .collect();
             terms.push(TermData {
                 value_set,

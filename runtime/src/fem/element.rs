@@ -133,13 +133,18 @@ pub struct ElementValues {
     pub basis: Vec<[[f64; QUAD8_NODES]; 3]>,
 }
 
-/// Row of [`ElementValues::basis`] holding a derivative: value 0, X 1, Y 2.
+/// Row of [`ElementValues::basis`] holding a derivative: value 0, X 1, Y 2; `None` for the
+/// second derivatives, which the Q8 element does not supply (its shape functions are only
+/// $`C^0`$ across element edges, so $`\partial^2 f`$ of a Q8 field is not square-integrable over
+/// the mesh). [`crate::problem::Problem::new`] refuses a model that asks for one.
 #[inline(always)]
-pub fn derivative_row(derivative: crate::model::Derivative) -> usize {
+pub fn derivative_row(derivative: crate::model::Derivative) -> Option<usize> {
+    use crate::model::Derivative;
     match derivative {
-        crate::model::Derivative::Value => 0,
-        crate::model::Derivative::X => 1,
-        crate::model::Derivative::Y => 2,
+        Derivative::Value => Some(0),
+        Derivative::X => Some(1),
+        Derivative::Y => Some(2),
+        Derivative::XX | Derivative::XY | Derivative::YY => None,
     }
 }
 

@@ -33,7 +33,7 @@
 //! Only the diagonal $`k_f`$ is checked: couplings of $`f`$ to other fields' gradients (which
 //! also act at the oscillation scale, and vanish on a flat state) are not.
 
-use crate::fem::element::{ElementValues, GaussRule, QUAD8_NODES};
+use crate::fem::element::{ElementValues, GaussRule, QUAD8_NODES, derivative_row};
 use crate::model::{Derivative, EnergyModel, ModelSpec};
 use crate::problem::Problem;
 use rayon::prelude::*;
@@ -172,7 +172,7 @@ fn point_hessian<M: EnergyModel>(
     let axis = |d: Derivative| match d {
         Derivative::X => Some(0),
         Derivative::Y => Some(1),
-        Derivative::Value => None,
+        Derivative::Value | Derivative::XX | Derivative::XY | Derivative::YY => None,
     };
     let mut point = PointHessian {
         gradient_block: vec![0.0; 4 * m * m],
@@ -184,15 +184,11 @@ fn point_hessian<M: EnergyModel>(
             .iter()
             .map(|&i| {
                 let entry = spec.jet[i];
+                let row = derivative_row(entry.derivative)
+                    .expect("Problem::new refuses derivatives the element does not supply");
+                let basis = &values.basis[q][row];
                 (0..QUAD8_NODES)
-                    .map(|k| {
-                        let b = match entry.derivative {
-                            Derivative::Value => values.values[q][k],
-                            Derivative::X => values.gradients[q][k][0],
-                            Derivative::Y => values.gradients[q][k][1],
-                        };
-                        b * nodal[k][entry.field]
-                    })
+                    .map(|k| basis[k] * nodal[k][entry.field])
                     .sum()
             })
             .collect();

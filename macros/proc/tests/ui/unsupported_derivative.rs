@@ -1,10 +1,10 @@
 wrinkle_macros::energy_model! {
-    /// Second derivatives and derivatives of non-fields.
+    /// Third derivatives, unknown axes and derivatives of non-fields.
     model Derivatives as "derivatives" {
         fields: w;
         parameters: k;
         let c = 2 * k;
-        energy e = w.xx^2 + w.z * w + c.x * w + k.y * w;
+        energy e = w.xxx^2 + w.z * w + c.x * w + k.y * w;
     }
 }
 
