@@ -24,7 +24,7 @@ use wrinkle::output::{
     ReportFigure, Response, ResponsePoint, RunDirectory, Severity, SummaryTable, Warning,
     WrinkleMap, plot_comparison, plot_profiles, plot_response, plot_wrinkle_map, write_report,
 };
-use wrinkle_runtime::fem::Mesh;
+use wrinkle_runtime::fem::{ElementKind, Mesh};
 
 type Result<T> = std::result::Result<T, Box<dyn Error>>;
 
@@ -488,10 +488,7 @@ fn read_q8_envelope(path: &Path) -> Result<(Mesh, Vec<f64>)> {
     let VertexNumbers::XML { connectivity, .. } = &piece.cells.cell_verts else {
         return Err("cells are not in XML form".into());
     };
-    let elements = connectivity
-        .chunks(8)
-        .map(|c| std::array::from_fn(|k| c[k] as usize))
-        .collect();
+    let connectivity = connectivity.iter().map(|&n| n as usize).collect();
     let envelope = piece
         .data
         .point
@@ -502,12 +499,6 @@ fn read_q8_envelope(path: &Path) -> Result<(Mesh, Vec<f64>)> {
             _ => None,
         })
         .ok_or_else(|| format!("{}: no point array `w`", path.display()))?;
-    let mesh = Mesh {
-        nodes,
-        elements,
-        edges: Default::default(),
-        points: Default::default(),
-        grid: None,
-    };
+    let mesh = Mesh::new(ElementKind::Quad8, nodes, connectivity)?;
     Ok((mesh, envelope))
 }

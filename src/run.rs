@@ -24,7 +24,7 @@ use std::path::Path;
 use std::time::Instant;
 use wrinkle_models::{ModelVisitor, with_model};
 use wrinkle_runtime::EnergyModel;
-use wrinkle_runtime::fem::{BodyLoad, LoadVectors, Mesh};
+use wrinkle_runtime::fem::{BodyLoad, LoadVectors, Loads, Mesh};
 use wrinkle_runtime::linear::factor::SparseFactorization;
 use wrinkle_runtime::problem::Problem;
 use wrinkle_runtime::solve::anm::AnmOptions;
@@ -175,7 +175,11 @@ fn add_uniform_imperfection<M: EnergyModel>(
         value: scene.solver.perturbation * h * bending * q.powi(4),
         proportional: false,
     };
-    let vectors = LoadVectors::assemble(problem.assembler.mesh(), problem.dofs(), &[], &[load])
+    let loads = Loads {
+        body_loads: vec![load],
+        ..Loads::default()
+    };
+    let vectors = LoadVectors::assemble(problem.assembler.mesh(), problem.dofs(), &loads)
         .map_err(|e| Error::Solver(format!("imperfection load: {e}")))?;
     for (f, g) in problem.loads.fixed.iter_mut().zip(&vectors.fixed) {
         *f += g;

@@ -15,7 +15,7 @@ use crate::physics::Layout;
 use crate::scene::{LoadKind, Scene};
 use std::sync::Arc;
 use wrinkle_runtime::EnergyModel;
-use wrinkle_runtime::fem::{DirichletCondition, EdgeTraction, Mesh};
+use wrinkle_runtime::fem::{DirichletCondition, EdgeTraction, Loads, Mesh};
 use wrinkle_runtime::problem::Problem;
 
 pub(crate) fn scene_error(scene: &Scene, key: &str, message: impl Into<String>) -> Error {
@@ -112,12 +112,7 @@ pub fn build_problem<M: EnergyModel>(scene: &Scene, model: M) -> Result<Problem<
         .map_err(|e| scene_error(scene, "mesh", e.to_string()))?,
     );
     let [u, v] = layout.in_plane;
-    let fixed = |edge: &str, field: usize| DirichletCondition {
-        edge: edge.into(),
-        field,
-        value: 0.0,
-        value_per_load: 0.0,
-    };
+    let fixed = DirichletCondition::fixed;
     let mut conditions = Vec::new();
     let mut tractions = Vec::new();
     let clamped_edges: &[&str] = match scene.load.kind {
@@ -154,6 +149,10 @@ pub fn build_problem<M: EnergyModel>(scene: &Scene, model: M) -> Result<Problem<
     for edge in clamped_edges {
         conditions.extend(layout.transverse.iter().map(|&f| fixed(edge, f)));
     }
-    Problem::new(model, mesh, &conditions, &tractions, &[])
+    let loads = Loads {
+        tractions,
+        ..Loads::default()
+    };
+    Problem::new(model, mesh, &conditions, &loads)
         .map_err(|e| Error::Solver(format!("setting up the problem: {e}")))
 }

@@ -128,7 +128,7 @@ fn fields_vtu_of_a_q8_mesh_round_trips_arrays_and_field_data() {
     else {
         panic!("legacy cells in an XML file");
     };
-    let expected: Vec<u64> = mesh.elements.iter().flatten().map(|&n| n as u64).collect();
+    let expected: Vec<u64> = mesh.connectivity.iter().map(|&n| n as u64).collect();
     assert_eq!(connectivity, expected);
     assert_eq!(offsets, vec![8, 16, 24, 32, 40, 48]);
 
@@ -202,7 +202,7 @@ fn fields_vtu_rejects_inconsistent_input_and_writes_nothing() {
     assert!(error.to_string().contains("load"), "{error}");
 
     let mut broken = mesh.clone();
-    broken.elements[2][5] = node_count + 4;
+    broken.connectivity[2 * 8 + 5] = node_count + 4;
     let error = write_fields_vtu(&file, &broken, &["u", "v"], &values, &[], &load).unwrap_err();
     assert!(error.to_string().contains("element 2"), "{error}");
     assert_eq!(

@@ -9,7 +9,7 @@ use std::sync::Arc;
 use std::time::Instant;
 use wrinkle_models::ReferenceEnvelope;
 use wrinkle_runtime::EnergyModel;
-use wrinkle_runtime::fem::{BodyLoad, DirichletCondition, EdgeTraction, Mesh};
+use wrinkle_runtime::fem::{BodyLoad, DirichletCondition, EdgeTraction, Loads, Mesh};
 use wrinkle_runtime::linear::factor::SparseFactorization;
 use wrinkle_runtime::problem::Problem;
 use wrinkle_runtime::solve::anm::{compute_series, compute_series_generic};
@@ -19,12 +19,7 @@ use wrinkle_runtime::solve::path::PathState;
 fn example_one(nx: usize, ny: usize) -> Problem<ReferenceEnvelope> {
     let model = ReferenceEnvelope::new(70000.0, 0.3, 0.05, 0.235_434_6, 0.0);
     let mesh = Arc::new(Mesh::rectangle(400.0, 200.0, nx, ny, 1.0).unwrap());
-    let fixed = |edge: &str, field: usize| DirichletCondition {
-        edge: edge.into(),
-        field,
-        value: 0.0,
-        value_per_load: 0.0,
-    };
+    let fixed = DirichletCondition::fixed;
     let mut conditions = vec![
         fixed("centre", 0),
         fixed("centre", 1),
@@ -47,12 +42,16 @@ fn example_one(nx: usize, ny: usize) -> Problem<ReferenceEnvelope> {
         proportional,
     })
     .collect();
-    let body = [BodyLoad {
-        field: 2,
-        value: 1e-7,
-        proportional: false,
-    }];
-    Problem::new(model, mesh, &conditions, &tractions, &body).unwrap()
+    let loads = Loads {
+        tractions,
+        body_loads: vec![BodyLoad {
+            field: 2,
+            value: 1e-7,
+            proportional: false,
+        }],
+        ..Loads::default()
+    };
+    Problem::new(model, mesh, &conditions, &loads).unwrap()
 }
 
 fn time<T>(label: &str, repeat: usize, mut f: impl FnMut() -> T) -> (T, f64) {

@@ -238,7 +238,7 @@ impl ModelVisitor for AssembledTangent {
             model.set_parameter(name, parameter_value(name)).unwrap();
         }
         let mesh = Arc::new(Mesh::rectangle(20.0, 10.0, 2, 1, 1.0).unwrap());
-        let problem = Problem::new(model, mesh, &[], &[], &[]).unwrap();
+        let problem = Problem::new(model, mesh, &[], &Default::default()).unwrap();
         let n = problem.free_count();
         let nf = spec.fields.len();
         let mut rng = StdRng::seed_from_u64(11);

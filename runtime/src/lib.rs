@@ -1,5 +1,6 @@
-//! Runtime of the wrinkle toolkit: the kernel contract models are generated against, the Q8
-//! finite element, meshes, dof maps, assembly, sparse linear algebra and solvers.
+//! Runtime of the wrinkle toolkit: the kernel contract models are generated against, the element
+//! contract and its elements (Q8, quadratic and cubic Hermite lines), meshes with named
+//! boundary sets, dof maps, loads, assembly, sparse linear algebra and solvers.
 
 pub mod model;
 pub mod scalar;

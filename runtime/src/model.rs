@@ -28,12 +28,15 @@ pub const MAX_FIELDS: usize = 8;
 /// term jet, which only second derivatives of many fields can make).
 pub const MAX_JET: usize = 3 * MAX_FIELDS;
 
-/// Quadrature rule a term is integrated with on the Q8 element.
+/// Quadrature rule a term is integrated with; each element says what it is
+/// ([`Element::quadrature`](crate::fem::Element::quadrature)).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum QuadratureRule {
-    /// 3×3 Gauss–Legendre (exact for the Q8 mass matrix; the default).
+    /// Exact for the element's mass matrix (the default): 3×3 Gauss–Legendre on Q8, 3 points
+    /// on Line3, 4 on Hermite2.
     Full,
-    /// 2×2 Gauss–Legendre (reduced integration, e.g. transverse shear of Reissner–Mindlin).
+    /// One order lower (reduced integration, e.g. transverse shear of Reissner–Mindlin): 2×2
+    /// on Q8, 2 points on the lines.
     Reduced,
 }
 

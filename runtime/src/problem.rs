@@ -2,7 +2,7 @@
 //! $`R(U,\lambda) = \partial\Pi/\partial U - F_0 - \lambda F_1`$ over the free dofs.
 
 use crate::fem::{
-    Assembler, BodyLoad, DirichletCondition, DofMap, EdgeTraction, LoadVectors, Mesh, TaylorTape,
+    Assembler, DirichletCondition, DofMap, ElementKind, LoadVectors, Loads, Mesh, TaylorTape,
 };
 use crate::linear::pattern::SparseMatrix;
 /// Euclidean norm (re-exported from [`crate::linear::vector`], where the vector kernels live).
@@ -21,11 +21,12 @@ pub enum ProblemError {
     /// Degenerate element.
     #[error(transparent)]
     Jacobian(#[from] crate::fem::element::JacobianError),
-    /// Load on a missing edge.
+    /// A load on a missing boundary set or component.
     #[error(transparent)]
-    Load(#[from] crate::fem::loads::UnknownEdgeError),
+    Load(#[from] crate::fem::loads::LoadError),
     /// The model's jet asks for a derivative the mesh's element does not supply (a second
-    /// derivative on the $`C^0`$ Q8 element): refused before any work.
+    /// derivative on the $`C^0`$ Q8 element, a Y derivative on a line): refused before any
+    /// work.
     #[error(
         "model `{model}` asks for `{field}.{derivative}`, which the {element} element does not supply",
         derivative = derivative.name()
@@ -34,7 +35,7 @@ pub enum ProblemError {
         /// Model name.
         model: &'static str,
         /// The element of the mesh.
-        element: &'static str,
+        element: ElementKind,
         /// The field whose derivative is asked for.
         field: &'static str,
         /// The derivative asked for.
@@ -78,14 +79,13 @@ pub struct Problem<M: EnergyModel> {
 }
 
 impl<M: EnergyModel> Problem<M> {
-    /// Builds dofs, assembler and load vectors, after checking that the element supplies every
-    /// derivative the model's jet reads and that the kernels' buffers hold the model.
+    /// Builds dofs, assembler and load vectors, after checking that the mesh's element supplies
+    /// every derivative the model's jet reads and that the kernels' buffers hold the model.
     pub fn new(
         model: M,
         mesh: Arc<Mesh>,
         conditions: &[DirichletCondition],
-        tractions: &[EdgeTraction],
-        body_loads: &[BodyLoad],
+        loads: &Loads,
     ) -> Result<Self, ProblemError> {
         let field_count = M::SPEC.fields.len();
         if field_count > crate::fem::assembly::MAX_FIELDS {
@@ -95,9 +95,9 @@ impl<M: EnergyModel> Problem<M> {
                 max: crate::fem::assembly::MAX_FIELDS,
             });
         }
-        check_model_fits::<M>()?;
+        check_model_fits::<M>(mesh.kind)?;
         let dofs = Arc::new(DofMap::new(&mesh, field_count, conditions)?);
-        let loads = LoadVectors::assemble(&mesh, &dofs, tractions, body_loads)?;
+        let loads = LoadVectors::assemble(&mesh, &dofs, loads)?;
         let assembler = Assembler::new(model, mesh, dofs)?;
         Ok(Problem {
             assembler,
@@ -253,7 +253,7 @@ impl<M: EnergyModel> Problem<M> {
         let mut residual_norm = vec![0.0; nf];
         let mut scale = vec![0.0; nf];
         for i in 0..residual.len() {
-            let f = dofs.global_of_free(i) % nf;
+            let f = dofs.field_of_free(i);
             let external = (self.loads.fixed[i] + load * self.loads.proportional[i]).abs();
             residual_norm[f] += residual[i] * residual[i];
             scale[f] += (magnitudes[i] + external).powi(2);
@@ -271,18 +271,18 @@ impl<M: EnergyModel> Problem<M> {
     }
 }
 
-/// Refuses, before any work, a model whose jet reads a derivative the Q8 element does not
-/// supply, or whose term jets overflow the kernels' buffers.
-fn check_model_fits<M: EnergyModel>() -> Result<(), ProblemError> {
+/// Refuses, before any work, a model whose jet reads a derivative the element `element` does
+/// not supply, or whose term jets overflow the kernels' buffers.
+fn check_model_fits<M: EnergyModel>(element: ElementKind) -> Result<(), ProblemError> {
     let spec = M::SPEC;
     if let Some(entry) = spec
         .jet
         .iter()
-        .find(|entry| crate::fem::element::derivative_row(entry.derivative).is_none())
+        .find(|entry| !element.supplies(entry.derivative))
     {
         return Err(ProblemError::UnsupportedDerivative {
             model: spec.name,
-            element: "Q8",
+            element,
             field: spec.fields[entry.field],
             derivative: entry.derivative,
         });

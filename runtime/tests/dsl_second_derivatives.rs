@@ -89,7 +89,13 @@ fn w_xx_xy_yy_are_differentiated_like_any_jet_entry() {
 #[test]
 fn q8_refuses_a_model_asking_for_w_xx() {
     let mesh = Arc::new(Mesh::rectangle(2.0, 1.0, 2, 1, 1.0).unwrap());
-    let error = Problem::new(KirchhoffSpring::new(D, NU, K), mesh, &[], &[], &[]).unwrap_err();
+    let error = Problem::new(
+        KirchhoffSpring::new(D, NU, K),
+        mesh,
+        &[],
+        &Default::default(),
+    )
+    .unwrap_err();
     assert!(
         matches!(
             error,

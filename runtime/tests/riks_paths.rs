@@ -8,7 +8,7 @@
 
 use std::sync::Arc;
 
-use wrinkle_runtime::fem::{DirichletCondition, EdgeTraction, Mesh};
+use wrinkle_runtime::fem::{DirichletCondition, EdgeTraction, Loads, Mesh};
 use wrinkle_runtime::linear::SparseFactorization;
 use wrinkle_runtime::problem::Problem;
 use wrinkle_runtime::solve::SolveError;
@@ -95,19 +95,18 @@ const LENGTH: f64 = 2.0;
 /// on `right` (X component on field 0, zero Y component also on field 0).
 fn strip_problem(model: NonlinearSpring, elements: usize) -> Problem<NonlinearSpring> {
     let mesh = Mesh::rectangle(LENGTH, 1.0, elements, 1, 1.0).unwrap();
-    let conditions = [DirichletCondition {
-        edge: "left".into(),
-        field: 0,
-        value: 0.0,
-        value_per_load: 0.0,
-    }];
+    let conditions = [DirichletCondition::fixed("left", 0)];
     let tractions = [EdgeTraction {
         edge: "right".into(),
         fields: [0, 0],
         traction: [1.0, 0.0],
         proportional: true,
     }];
-    Problem::new(model, Arc::new(mesh), &conditions, &tractions, &[]).unwrap()
+    let loads = Loads {
+        tractions: tractions.to_vec(),
+        ..Loads::default()
+    };
+    Problem::new(model, Arc::new(mesh), &conditions, &loads).unwrap()
 }
 
 /// X coordinate of every free dof.
@@ -676,20 +675,13 @@ fn displacement_control_uses_the_load_derivative_of_prescribed_values() {
     };
     let mesh = Mesh::rectangle(LENGTH, 1.0, 3, 1, 1.0).unwrap();
     let conditions = [
+        DirichletCondition::fixed("left", 0),
         DirichletCondition {
-            edge: "left".into(),
-            field: 0,
-            value: 0.0,
-            value_per_load: 0.0,
-        },
-        DirichletCondition {
-            edge: "right".into(),
-            field: 0,
-            value: 0.0,
             value_per_load: 1.0,
+            ..DirichletCondition::fixed("right", 0)
         },
     ];
-    let problem = Problem::new(model, Arc::new(mesh), &conditions, &[], &[]).unwrap();
+    let problem = Problem::new(model, Arc::new(mesh), &conditions, &Loads::default()).unwrap();
     let positions = free_positions(&problem);
     let options = RiksOptions {
         max_load: Some(1.0),

@@ -176,7 +176,7 @@ pub fn write_fields_vtu_with_cells(
     cells: &[PointArray],
     field_data: &FieldData,
 ) -> io::Result<()> {
-    check_arrays(cells, mesh.elements.len())?;
+    check_arrays(cells, mesh.element_count())?;
     check_unique_names(cells.iter().map(|array| array.name.as_str()))?;
     let node_count = mesh.nodes.len();
     let field_count = field_names.len();
@@ -191,8 +191,8 @@ pub fn write_fields_vtu_with_cells(
     if mesh.nodes.iter().flatten().any(|c| !c.is_finite()) {
         return Err(invalid("mesh", "node coordinates must be finite"));
     }
-    let mut connectivity = Vec::with_capacity(8 * mesh.elements.len());
-    for (element, nodes) in mesh.elements.iter().enumerate() {
+    let mut connectivity = Vec::with_capacity(mesh.connectivity.len());
+    for (element, nodes) in mesh.elements().enumerate() {
         for &node in nodes {
             if node >= node_count {
                 return Err(OutputError::NodeOutOfRange {
@@ -205,7 +205,10 @@ pub fn write_fields_vtu_with_cells(
             connectivity.push(node as u64);
         }
     }
-    let offsets = (1..=mesh.elements.len() as u64).map(|e| 8 * e).collect();
+    let per_element = mesh.kind.nodes() as u64;
+    let offsets = (1..=mesh.element_count() as u64)
+        .map(|e| per_element * e)
+        .collect();
     let points: Vec<f64> = mesh.nodes.iter().flat_map(|&[x, y]| [x, y, 0.0]).collect();
 
     let mut point_arrays = Vec::with_capacity(field_count + extra.len());
@@ -223,7 +226,7 @@ pub fn write_fields_vtu_with_cells(
                 connectivity,
                 offsets,
             },
-            types: vec![CellType::QuadraticQuad; mesh.elements.len()],
+            types: vec![cell_type(mesh.kind.vtk_cell_type())?; mesh.element_count()],
         },
         data: Attributes {
             point: point_arrays,
@@ -231,6 +234,19 @@ pub fn write_fields_vtu_with_cells(
         },
     };
     write_piece(path, "wrinkle finite element fields", piece, field_data)
+}
+
+/// The vtkio cell type of a VTK cell type number (those of the runtime's elements).
+fn cell_type(number: u8) -> io::Result<CellType> {
+    match number {
+        3 => Ok(CellType::Line),
+        21 => Ok(CellType::QuadraticEdge),
+        23 => Ok(CellType::QuadraticQuad),
+        other => Err(invalid(
+            "mesh",
+            format!("no VTK cell of type {other} is written"),
+        )),
+    }
 }
 
 /// Writes a sampled surface as a `.vtu` file: the grid points of `surface` placed at

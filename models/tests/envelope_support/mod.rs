@@ -13,7 +13,7 @@
 use std::f64::consts::PI;
 use std::sync::Arc;
 use wrinkle_runtime::EnergyModel;
-use wrinkle_runtime::fem::{DirichletCondition, EdgeTraction, Mesh};
+use wrinkle_runtime::fem::{DirichletCondition, EdgeTraction, Loads, Mesh};
 use wrinkle_runtime::linear::factor::SparseFactorization;
 use wrinkle_runtime::problem::Problem;
 use wrinkle_runtime::solve::buckling::{LinearBuckling, LinearBucklingOptions, linear_buckling};
@@ -80,12 +80,7 @@ pub fn envelope_model<M: EnergyModel>(q: f64) -> M {
 }
 
 fn fixed(edge: &str, field: usize) -> DirichletCondition {
-    DirichletCondition {
-        edge: edge.into(),
-        field,
-        value: 0.0,
-        value_per_load: 0.0,
-    }
+    DirichletCondition::fixed(edge, field)
 }
 
 /// Example 1 on a uniform `nx × ny` Q8 mesh (see the module documentation).
@@ -122,7 +117,11 @@ pub fn example1<M: EnergyModel>(model: M, nx: usize, ny: usize) -> Problem<M> {
     })
     .collect();
     let mesh = Arc::new(Mesh::rectangle(LX, LY, nx, ny, 1.0).unwrap());
-    Problem::new(model, mesh, &conditions, &tractions, &[]).unwrap()
+    let loads = Loads {
+        tractions,
+        ..Loads::default()
+    };
+    Problem::new(model, mesh, &conditions, &loads).unwrap()
 }
 
 /// Linear buckling about λ = 0, first (distinct) mode. Pre-buckling Newton tolerance 1e-6 as

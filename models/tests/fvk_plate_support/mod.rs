@@ -13,7 +13,7 @@ use std::sync::Arc;
 use wrinkle_models::FvkPlate;
 use wrinkle_runtime::EnergyModel;
 use wrinkle_runtime::fem::mesh::graded_breakpoints;
-use wrinkle_runtime::fem::{BodyLoad, DirichletCondition, EdgeTraction, Mesh};
+use wrinkle_runtime::fem::{BodyLoad, DirichletCondition, EdgeTraction, Loads, Mesh};
 use wrinkle_runtime::linear::factor::{FactorizationKind, SparseFactorization};
 use wrinkle_runtime::problem::Problem;
 use wrinkle_runtime::solve::buckling::{LinearBuckling, LinearBucklingOptions, linear_buckling};
@@ -143,12 +143,7 @@ pub enum Support {
 }
 
 fn fixed(edge: &str, field: usize) -> DirichletCondition {
-    DirichletCondition {
-        edge: edge.into(),
-        field,
-        value: 0.0,
-        value_per_load: 0.0,
-    }
+    DirichletCondition::fixed(edge, field)
 }
 
 fn field<M: EnergyModel>(name: &str) -> usize {
@@ -197,7 +192,11 @@ pub fn square_plate<M: EnergyModel>(
         value: pressure,
         proportional: false,
     };
-    Problem::new(model, mesh, &conditions, &[], &[load]).unwrap()
+    let loads = Loads {
+        body_loads: vec![load],
+        ..Loads::default()
+    };
+    Problem::new(model, mesh, &conditions, &loads).unwrap()
 }
 
 /// Solution of the problem linearised about $`U = 0`$: $`K_t(0)\,U = F_0`$, with the kind of
@@ -356,7 +355,7 @@ pub fn lowest_mass_eigenvalue<M: EnergyModel>(
 /// Unit square plate, `n × n` mesh, with no Dirichlet condition at all.
 pub fn free_square_plate<M: EnergyModel>(model: M, n: usize) -> Problem<M> {
     let mesh = Arc::new(Mesh::rectangle(1.0, 1.0, n, n, 1.0).unwrap());
-    Problem::new(model, mesh, &[], &[], &[]).unwrap()
+    Problem::new(model, mesh, &[], &Default::default()).unwrap()
 }
 
 /// The paper's example 1 (THEORY.md §9): length along X.
@@ -414,7 +413,11 @@ pub fn example1<M: EnergyModel>(model: M, mesh: Mesh) -> Problem<M> {
         proportional,
     })
     .collect();
-    Problem::new(model, Arc::new(mesh), &conditions, &tractions, &[]).unwrap()
+    let loads = Loads {
+        tractions,
+        ..Loads::default()
+    };
+    Problem::new(model, Arc::new(mesh), &conditions, &loads).unwrap()
 }
 
 /// Linear buckling of a problem (pre-buckling Newton at λ = 0, geometric stiffness from dual

@@ -1,34 +1,100 @@
-//! Degrees of freedom: field × node numbering and Dirichlet constraints.
+//! Degrees of freedom: node × field × component numbering and Dirichlet constraints.
 //!
-//! Every node carries every field of the model. A dof is free (numbered `0..free_count`) or
-//! prescribed with value $`g = g_0 + \lambda g_1`$, where $`\lambda`$ is the load parameter:
-//! $`g_1 \neq 0`$ is displacement control.
+//! Every node carries every field of the model, each with the element's components per node
+//! ([`ElementKind::components`](super::element::ElementKind::components)): the value for
+//! Lagrange elements, the value and the slope $`\partial f/\partial X`$ for the cubic Hermite
+//! line. The global index of component $`c`$ of field $`f`$ at node $`n`$ is
+//! $$`g = (n\,N_f + f)\,N_c + c`$$
+//! (node-major: with one component, $`g = n N_f + f`$). A dof is free (numbered
+//! `0..free_count` in the order of $`g`$) or prescribed with value $`g_0 + \lambda g_1`$,
+//! where $`\lambda`$ is the load parameter: $`g_1 \neq 0`$ is displacement control.
 
 use super::mesh::Mesh;
 use crate::scalar::Scalar;
 
-/// A Dirichlet condition on one field along one named edge: $`f = g_0 + \lambda g_1`$.
+/// A nodal component of a field.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum NodalComponent {
+    /// The field's value (component 0 of every element).
+    Value,
+    /// The slope $`\partial f/\partial X`$ (component 1 of a cubic Hermite node).
+    Slope,
+}
+
+impl NodalComponent {
+    /// The component's index at a node.
+    pub const fn index(self) -> usize {
+        match self {
+            NodalComponent::Value => 0,
+            NodalComponent::Slope => 1,
+        }
+    }
+
+    /// The components of a node with `count` of them (value, then slope).
+    pub fn first(count: usize) -> &'static [NodalComponent] {
+        &[NodalComponent::Value, NodalComponent::Slope][..count.min(2)]
+    }
+
+    /// Name in messages.
+    pub const fn name(self) -> &'static str {
+        match self {
+            NodalComponent::Value => "value",
+            NodalComponent::Slope => "slope",
+        }
+    }
+}
+
+/// A Dirichlet condition on one nodal component of one field at every node of a named
+/// boundary set (edge or point set): $`f_c = g_0 + \lambda g_1`$.
 #[derive(Clone, Debug, PartialEq)]
 pub struct DirichletCondition {
-    /// Edge name in the mesh (`left`, `right`, `bottom`, `top` for rectangles).
-    pub edge: String,
+    /// Boundary set name in the mesh (`left`, `right`, `bottom`, `top` for rectangles; `left`,
+    /// `right` for lines; any point set).
+    pub boundary: String,
     /// Field index in the model.
     pub field: usize,
+    /// Which nodal component is prescribed.
+    pub component: NodalComponent,
     /// $`g_0`$.
     pub value: f64,
     /// $`g_1`$ (value per unit load parameter).
     pub value_per_load: f64,
 }
 
+impl DirichletCondition {
+    /// $`f = 0`$ (the value component) on `boundary`.
+    pub fn fixed(boundary: &str, field: usize) -> Self {
+        DirichletCondition {
+            boundary: boundary.to_string(),
+            field,
+            component: NodalComponent::Value,
+            value: 0.0,
+            value_per_load: 0.0,
+        }
+    }
+
+    /// Every component of `field` zero on `boundary` — a clamp: the value alone on a Lagrange
+    /// mesh, value and slope on a cubic Hermite one.
+    pub fn clamped(boundary: &str, field: usize, kind: super::element::ElementKind) -> Vec<Self> {
+        NodalComponent::first(kind.components())
+            .iter()
+            .map(|&component| DirichletCondition {
+                component,
+                ..DirichletCondition::fixed(boundary, field)
+            })
+            .collect()
+    }
+}
+
 /// Errors building the dof map.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum DofError {
-    /// The condition names an edge the mesh does not have.
-    #[error("boundary condition on unknown edge `{edge}` (edges: {available})")]
-    UnknownEdge {
-        /// Edge asked for.
-        edge: String,
-        /// Edges that exist.
+    /// The condition names a boundary set the mesh does not have.
+    #[error("boundary condition on unknown boundary `{boundary}` (boundaries: {available})")]
+    UnknownBoundary {
+        /// Boundary asked for.
+        boundary: String,
+        /// Boundaries that exist.
         available: String,
     },
     /// Field index out of range.
@@ -39,15 +105,31 @@ pub enum DofError {
         /// Number of fields.
         count: usize,
     },
+    /// The condition prescribes a component the mesh's element does not carry (a slope on a
+    /// Lagrange element).
+    #[error("boundary condition on the {component} of field {field} on `{boundary}`, but {element} nodes carry no {component}", component = component.name())]
+    MissingComponent {
+        /// Boundary set.
+        boundary: String,
+        /// Field index.
+        field: usize,
+        /// Component asked for.
+        component: NodalComponent,
+        /// The mesh's element.
+        element: super::element::ElementKind,
+    },
     /// Two conditions prescribe different values at one dof (e.g. at a corner).
     #[error(
-        "conflicting boundary values for field {field} at node {node}: ({a0} + λ {a1}) vs ({b0} + λ {b1})"
+        "conflicting boundary values for field {field} ({component}) at node {node}: ({a0} + λ {a1}) vs ({b0} + λ {b1})",
+        component = component.name()
     )]
     Conflict {
         /// Node index.
         node: usize,
         /// Field index.
         field: usize,
+        /// Component.
+        component: NodalComponent,
         /// First g0.
         a0: f64,
         /// First g1.
@@ -67,13 +149,15 @@ pub enum DofError {
 pub struct DofMap {
     /// Number of fields per node.
     pub field_count: usize,
+    /// Components per node and field (the element's).
+    pub components: usize,
     /// Number of nodes.
     pub node_count: usize,
     /// Number of free dofs.
     pub free_count: usize,
-    /// `free_index[node * field_count + field]`: the free number, or `None` if prescribed.
+    /// `free_index[g]`: the free number of global dof `g`, or `None` if prescribed.
     free_index: Vec<Option<usize>>,
-    /// For each free dof, its global index `node * field_count + field`.
+    /// For each free dof, its global index.
     free_to_global: Vec<usize>,
     /// $`g_0`$ per global dof (0 for free dofs).
     prescribed_value: Vec<f64>,
@@ -83,13 +167,15 @@ pub struct DofMap {
 
 impl DofMap {
     /// Numbers the dofs of `mesh` for `field_count` fields under `conditions`. Free dofs are
-    /// numbered node-major (all fields of node 0, then node 1, …).
+    /// numbered in global order (node-major: every field and component of node 0, then
+    /// node 1, …).
     pub fn new(
         mesh: &Mesh,
         field_count: usize,
         conditions: &[DirichletCondition],
     ) -> Result<Self, DofError> {
-        let total = mesh.nodes.len() * field_count;
+        let components = mesh.kind.components();
+        let total = mesh.nodes.len() * field_count * components;
         let mut prescribed: Vec<Option<(f64, f64)>> = vec![None; total];
         for c in conditions {
             if c.field >= field_count {
@@ -98,20 +184,29 @@ impl DofMap {
                     count: field_count,
                 });
             }
-            let nodes = mesh
-                .edge_nodes(&c.edge)
-                .ok_or_else(|| DofError::UnknownEdge {
-                    edge: c.edge.clone(),
-                    available: mesh.edge_names().join(", "),
-                })?;
+            if c.component.index() >= components {
+                return Err(DofError::MissingComponent {
+                    boundary: c.boundary.clone(),
+                    field: c.field,
+                    component: c.component,
+                    element: mesh.kind,
+                });
+            }
+            let nodes =
+                mesh.boundary_nodes(&c.boundary)
+                    .ok_or_else(|| DofError::UnknownBoundary {
+                        boundary: c.boundary.clone(),
+                        available: mesh.boundary_names().join(", "),
+                    })?;
             for node in nodes {
-                let g = node * field_count + c.field;
+                let g = (node * field_count + c.field) * components + c.component.index();
                 let new = (c.value, c.value_per_load);
                 match prescribed[g] {
                     Some(old) if old != new => {
                         return Err(DofError::Conflict {
                             node,
                             field: c.field,
+                            component: c.component,
                             a0: old.0,
                             a1: old.1,
                             b0: new.0,
@@ -143,6 +238,7 @@ impl DofMap {
         }
         Ok(DofMap {
             field_count,
+            components,
             node_count: mesh.nodes.len(),
             free_count: free_to_global.len(),
             free_index,
@@ -152,33 +248,74 @@ impl DofMap {
         })
     }
 
-    /// Free number of `(node, field)`, if free.
+    /// Global index of component `component` of `field` at `node`.
     #[inline]
-    pub fn free(&self, node: usize, field: usize) -> Option<usize> {
-        self.free_index[node * self.field_count + field]
+    pub fn global_index(&self, node: usize, field: usize, component: usize) -> usize {
+        (node * self.field_count + field) * self.components + component
     }
 
-    /// Global index `node * field_count + field` of a free dof.
+    /// Free number of the value of `field` at `node`, if free.
+    #[inline]
+    pub fn free(&self, node: usize, field: usize) -> Option<usize> {
+        self.free_index[self.global_index(node, field, 0)]
+    }
+
+    /// Free number of a component of `field` at `node`, if free (`None` also when the
+    /// element has no such component).
+    #[inline]
+    pub fn free_component(
+        &self,
+        node: usize,
+        field: usize,
+        component: NodalComponent,
+    ) -> Option<usize> {
+        let c = component.index();
+        (c < self.components)
+            .then(|| self.free_index[self.global_index(node, field, c)])
+            .flatten()
+    }
+
+    /// Global index of a free dof.
     #[inline]
     pub fn global_of_free(&self, free: usize) -> usize {
         self.free_to_global[free]
     }
 
-    /// Local dof list of an element: entry `k * field_count + f` is node `k`, field `f`.
+    /// The field a global dof belongs to.
+    #[inline]
+    pub fn field_of_global(&self, global: usize) -> usize {
+        (global / self.components) % self.field_count
+    }
+
+    /// The field a free dof belongs to.
+    #[inline]
+    pub fn field_of_free(&self, free: usize) -> usize {
+        self.field_of_global(self.free_to_global[free])
+    }
+
+    /// Local dof list of an element with nodes `element_nodes`: entry
+    /// `(k * field_count + f) * components + c` is node `k`, field `f`, component `c` (the
+    /// global order restricted to the element).
     pub fn element_dofs(&self, element_nodes: &[usize]) -> Vec<Option<usize>> {
-        let mut out = Vec::with_capacity(element_nodes.len() * self.field_count);
+        let per_node = self.field_count * self.components;
+        let mut out = Vec::with_capacity(element_nodes.len() * per_node);
         for &n in element_nodes {
-            for f in 0..self.field_count {
-                out.push(self.free(n, f));
-            }
+            out.extend_from_slice(&self.free_index[n * per_node..][..per_node]);
         }
         out
+    }
+
+    /// The value of every field at every node, node-major (`out[node * field_count + field]`),
+    /// from a global vector: the global vector itself for Lagrange elements, its value
+    /// components for Hermite ones (what a writer of nodal fields needs).
+    pub fn nodal_values(&self, global: &[f64]) -> Vec<f64> {
+        global.iter().step_by(self.components).copied().collect()
     }
 
     /// All nodal values (global numbering) from the free values and the load parameter:
     /// prescribed dofs get $`g_0 + \lambda g_1`$.
     pub fn expand<S: Scalar>(&self, free_values: &[S], load: S) -> Vec<S> {
-        let total = self.node_count * self.field_count;
+        let total = self.free_index.len();
         let mut out = Vec::with_capacity(total);
         for g in 0..total {
             out.push(match self.free_index[g] {
@@ -193,7 +330,7 @@ impl DofMap {
     /// from `free_values`, prescribed values $`g_1\,\delta\lambda`$ (the fixed part $`g_0`$ does
     /// not vary along a path).
     pub fn expand_increment(&self, free_values: &[f64], load_increment: f64) -> Vec<f64> {
-        (0..self.node_count * self.field_count)
+        (0..self.free_index.len())
             .map(|g| match self.free_index[g] {
                 Some(k) => free_values[k],
                 None => load_increment * self.prescribed_value_per_load[g],
@@ -220,22 +357,16 @@ impl DofMap {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fem::element::ElementKind;
 
     #[test]
     fn corner_conflict_is_reported() {
         let mesh = Mesh::rectangle(1.0, 1.0, 2, 2, 1.0).unwrap();
         let conditions = vec![
+            DirichletCondition::fixed("left", 0),
             DirichletCondition {
-                edge: "left".into(),
-                field: 0,
-                value: 0.0,
-                value_per_load: 0.0,
-            },
-            DirichletCondition {
-                edge: "bottom".into(),
-                field: 0,
                 value: 1.0,
-                value_per_load: 0.0,
+                ..DirichletCondition::fixed("bottom", 0)
             },
         ];
         assert!(matches!(
@@ -248,32 +379,70 @@ mod tests {
     fn expand_restrict_round_trip_and_prescribed_values() {
         let mesh = Mesh::rectangle(1.0, 1.0, 2, 1, 1.0).unwrap();
         let conditions = vec![DirichletCondition {
-            edge: "right".into(),
-            field: 1,
             value: 0.5,
             value_per_load: 2.0,
+            ..DirichletCondition::fixed("right", 1)
         }];
         let dofs = DofMap::new(&mesh, 2, &conditions).unwrap();
         assert_eq!(dofs.free_count, 2 * mesh.nodes.len() - 3);
         let free: Vec<f64> = (0..dofs.free_count).map(|i| i as f64).collect();
         let full = dofs.expand(&free, 3.0);
         assert_eq!(dofs.restrict(&full), free);
-        for n in mesh.edge_nodes("right").unwrap() {
+        for n in mesh.boundary_nodes("right").unwrap() {
             assert_eq!(full[n * 2 + 1], 0.5 + 2.0 * 3.0);
         }
         assert!(dofs.has_load_dependent_values());
+        assert!(matches!(
+            DofMap::new(&mesh, 2, &[DirichletCondition::fixed("middle", 0)]),
+            Err(DofError::UnknownBoundary { .. })
+        ));
         assert!(matches!(
             DofMap::new(
                 &mesh,
                 2,
                 &[DirichletCondition {
-                    edge: "middle".into(),
-                    field: 0,
-                    value: 0.0,
-                    value_per_load: 0.0
+                    component: NodalComponent::Slope,
+                    ..DirichletCondition::fixed("left", 0)
                 }]
             ),
-            Err(DofError::UnknownEdge { .. })
+            Err(DofError::MissingComponent {
+                element: ElementKind::Quad8,
+                ..
+            })
         ));
+    }
+
+    #[test]
+    fn hermite_nodes_carry_value_and_slope_numbered_node_major() {
+        let mesh = Mesh::line(3.0, 3, 1.0, ElementKind::Hermite2).unwrap();
+        let clamp = DirichletCondition::clamped("left", 1, ElementKind::Hermite2);
+        assert_eq!(clamp.len(), 2);
+        let dofs = DofMap::new(&mesh, 2, &clamp).unwrap();
+        assert_eq!((dofs.components, dofs.free_count), (2, 4 * 2 * 2 - 2));
+        // Node 0: u value, u slope, v value (fixed), v slope (fixed); node 1 starts at g = 4.
+        assert_eq!(dofs.global_index(1, 0, 1), 5);
+        assert_eq!(dofs.free(0, 1), None);
+        assert_eq!(dofs.free_component(0, 1, NodalComponent::Slope), None);
+        assert_eq!(dofs.free_component(0, 0, NodalComponent::Slope), Some(1));
+        assert_eq!(dofs.free(1, 1), Some(4));
+        assert_eq!(dofs.field_of_free(4), 1);
+        assert_eq!(
+            dofs.element_dofs(&[0, 1]),
+            [
+                Some(0),
+                Some(1),
+                None,
+                None,
+                Some(2),
+                Some(3),
+                Some(4),
+                Some(5)
+            ]
+        );
+        let global: Vec<f64> = (0..16).map(f64::from).collect();
+        assert_eq!(
+            dofs.nodal_values(&global),
+            [0.0, 2.0, 4.0, 6.0, 8.0, 10.0, 12.0, 14.0]
+        );
     }
 }

@@ -1,31 +1,47 @@
-//! Meshes of Q8 elements and the structured rectangle generator.
+//! Meshes: nodes, elements of one [`ElementKind`], and named boundary sets.
+//!
+//! A mesh is filled the same way whatever makes it — the structured generators here
+//! ([`Mesh::rectangle`] of Q8 elements, [`Mesh::line`] of line elements) or a mesh file:
+//! [`Mesh::new`] checks the connectivity, then [`Mesh::insert_edge_set`] and
+//! [`Mesh::insert_point_set`] name the boundaries (a file's physical groups of dimension 1
+//! and 0). Elements may be unstructured and the domain may have holes: nothing below assumes a
+//! rectangle except the optional [`StructuredGrid`], a faster point location.
+//!
+//! **Boundary sets.** An *edge set* is a list of quadratic segments `[end, end, middle]` (the
+//! facets of a plane element); a *point set* is a list of nodes (a corner, the end of a beam, a
+//! point that removes a rigid motion). Conditions and loads name them; their nodes are
+//! [`Mesh::boundary_nodes`].
 
-use super::element::QUAD8_NODES;
+use super::element::{Element, ElementKind, with_element};
 use std::collections::BTreeMap;
 
-/// A mesh of Q8 elements with named edge sets.
+/// A mesh of elements of one kind with named boundary sets.
 #[derive(Clone, Debug)]
 pub struct Mesh {
-    /// Node coordinates $`(X, Y)`$.
+    /// The element every cell is.
+    pub kind: ElementKind,
+    /// Node coordinates $`(X, Y)`$ ($`Y = 0`$ on a line mesh).
     pub nodes: Vec<[f64; 2]>,
-    /// Element connectivity in VTK Q8 order (corners counter-clockwise, then mid-sides).
-    pub elements: Vec<[usize; QUAD8_NODES]>,
-    /// Named boundary edges, each a list of 3-node segments `[end, end, middle]`.
+    /// Element connectivity, [`ElementKind::nodes`] entries per element, each element's nodes
+    /// in the element's order (VTK order for Q8: corners counter-clockwise, then mid-sides).
+    pub connectivity: Vec<usize>,
+    /// Named edge sets of a plane mesh, each a list of 3-node segments `[end, end, middle]`.
     pub edges: BTreeMap<String, Vec<[usize; 3]>>,
-    /// Named node sets that are not edges (single points used to remove rigid-body motions).
+    /// Named point sets (end points of a line, points that remove rigid-body motions).
     pub points: BTreeMap<String, Vec<usize>>,
-    /// Element boundaries of a structured rectangle (`None` for a general mesh): point location
+    /// Element boundaries of a structured mesh (`None` for a general mesh): point location
     /// is then a binary search per axis instead of a scan of the elements.
     pub grid: Option<StructuredGrid>,
 }
 
-/// The tensor-product layout of a mesh made by [`Mesh::rectangle`]: element `ey * nx + ex`
-/// covers $`[x_{e_x}, x_{e_x+1}] \times [y_{e_y}, y_{e_y+1}]`$ and is an affine rectangle.
+/// The tensor-product layout of a mesh made by [`Mesh::rectangle`] (element `ey * nx + ex`
+/// covers $`[x_{e_x}, x_{e_x+1}] \times [y_{e_y}, y_{e_y+1}]`$ and is an affine rectangle) or
+/// by [`Mesh::line`] (element `e` covers $`[x_e, x_{e+1}]`$; `ys` is empty).
 #[derive(Clone, Debug, PartialEq)]
 pub struct StructuredGrid {
     /// Element boundaries along X (`nx + 1`, increasing).
     pub xs: Vec<f64>,
-    /// Element boundaries along Y (`ny + 1`, increasing).
+    /// Element boundaries along Y (`ny + 1`, increasing; empty for a line).
     pub ys: Vec<f64>,
 }
 
@@ -41,6 +57,17 @@ impl StructuredGrid {
         let i = breaks.partition_point(|&b| b <= x).clamp(1, count) - 1;
         let local = 2.0 * (x - breaks[i]) / (breaks[i + 1] - breaks[i]) - 1.0;
         Some((i, local.clamp(-1.0, 1.0)))
+    }
+
+    /// The element containing `point` and its reference coordinates.
+    fn locate(&self, point: [f64; 2]) -> Option<(usize, [f64; 2])> {
+        let (ex, xi) = StructuredGrid::interval(&self.xs, point[0])?;
+        if self.ys.is_empty() {
+            let length = self.xs[self.xs.len() - 1] - self.xs[0];
+            return (point[1].abs() <= 1e-10 * length).then_some((ex, [xi, 0.0]));
+        }
+        let (ey, eta) = StructuredGrid::interval(&self.ys, point[1])?;
+        Some((ey * (self.xs.len() - 1) + ex, [xi, eta]))
     }
 }
 
@@ -58,6 +85,72 @@ pub enum MeshError {
     /// Grading below 1.
     #[error("mesh: grading must be >= 1 (largest/smallest element size), got {0}")]
     Grading(f64),
+    /// No element at all.
+    #[error("mesh: no elements")]
+    NoElements,
+    /// The connectivity is not a whole number of elements.
+    #[error(
+        "mesh: {length} connectivity entries are not a whole number of {kind} elements of {nodes} nodes"
+    )]
+    Connectivity {
+        /// The element kind.
+        kind: ElementKind,
+        /// Its node count.
+        nodes: usize,
+        /// The connectivity's length.
+        length: usize,
+    },
+    /// An element refers to a node that does not exist.
+    #[error("mesh: element {element} refers to node {node}, but the mesh has {node_count} nodes")]
+    NodeOutOfRange {
+        /// Element index.
+        element: usize,
+        /// The node index given.
+        node: usize,
+        /// Number of nodes.
+        node_count: usize,
+    },
+    /// A node coordinate is NaN or infinite.
+    #[error("mesh: node {node} has a non-finite coordinate {coordinates:?}")]
+    NonFiniteNode {
+        /// Node index.
+        node: usize,
+        /// Its coordinates.
+        coordinates: [f64; 2],
+    },
+    /// A node of a line mesh is off the X axis.
+    #[error("mesh: node {node} of a {kind} mesh has Y = {y}; line elements lie on the X axis")]
+    OffAxis {
+        /// The element kind.
+        kind: ElementKind,
+        /// Node index.
+        node: usize,
+        /// Its Y.
+        y: f64,
+    },
+    /// [`Mesh::line`] asked for a plane element.
+    #[error("mesh: a line mesh needs a line element, not {0}")]
+    NotALineElement(ElementKind),
+    /// An edge set on a mesh without edges.
+    #[error("mesh: edge set `{set}` on a {kind} mesh, which has no edges (name points instead)")]
+    EdgesOnLine {
+        /// The set's name.
+        set: String,
+        /// The element kind.
+        kind: ElementKind,
+    },
+    /// A boundary set refers to a node that does not exist.
+    #[error(
+        "mesh: boundary set `{set}` refers to node {node}, but the mesh has {node_count} nodes"
+    )]
+    SetNodeOutOfRange {
+        /// The set's name.
+        set: String,
+        /// The node index given.
+        node: usize,
+        /// Number of nodes.
+        node_count: usize,
+    },
 }
 
 /// Positions of `n + 1` element boundaries on $`[0, L]`$, symmetric geometric grading with the
@@ -84,11 +177,111 @@ pub fn graded_breakpoints(length: f64, n: usize, grading: f64) -> Vec<f64> {
     x
 }
 
+/// Checks the sizes and grading of a structured generator.
+fn check_sizes(sizes: &[(&'static str, f64)], grading: f64) -> Result<(), MeshError> {
+    for &(what, value) in sizes {
+        if value.is_nan() || value <= 0.0 || !value.is_finite() {
+            return Err(MeshError::NotPositive { what, value });
+        }
+    }
+    if grading.is_nan() || grading < 1.0 || !grading.is_finite() {
+        return Err(MeshError::Grading(grading));
+    }
+    Ok(())
+}
+
 impl Mesh {
+    /// A mesh of `kind` elements with the given nodes and connectivity
+    /// ([`ElementKind::nodes`] entries per element), no boundary sets and no grid. Checks that
+    /// the connectivity is whole elements of existing nodes, that coordinates are finite and
+    /// that a line mesh lies on the X axis. (Element shapes — inverted or degenerate — are
+    /// checked where they are evaluated: [`super::ElementValues::new`].)
+    pub fn new(
+        kind: ElementKind,
+        nodes: Vec<[f64; 2]>,
+        connectivity: Vec<usize>,
+    ) -> Result<Mesh, MeshError> {
+        let per_element = kind.nodes();
+        if connectivity.is_empty() {
+            return Err(MeshError::NoElements);
+        }
+        if !connectivity.len().is_multiple_of(per_element) {
+            return Err(MeshError::Connectivity {
+                kind,
+                nodes: per_element,
+                length: connectivity.len(),
+            });
+        }
+        if let Some(position) = connectivity.iter().position(|&n| n >= nodes.len()) {
+            return Err(MeshError::NodeOutOfRange {
+                element: position / per_element,
+                node: connectivity[position],
+                node_count: nodes.len(),
+            });
+        }
+        for (node, &coordinates) in nodes.iter().enumerate() {
+            if !coordinates.iter().all(|c| c.is_finite()) {
+                return Err(MeshError::NonFiniteNode { node, coordinates });
+            }
+            if kind.dimension() == 1 && coordinates[1] != 0.0 {
+                let y = coordinates[1];
+                return Err(MeshError::OffAxis { kind, node, y });
+            }
+        }
+        Ok(Mesh {
+            kind,
+            nodes,
+            connectivity,
+            edges: BTreeMap::new(),
+            points: BTreeMap::new(),
+            grid: None,
+        })
+    }
+
+    /// Names an edge set (segments `[end, end, middle]`); replaces a set of the same name.
+    pub fn insert_edge_set(
+        &mut self,
+        name: &str,
+        segments: Vec<[usize; 3]>,
+    ) -> Result<(), MeshError> {
+        if self.kind.dimension() != 2 {
+            return Err(MeshError::EdgesOnLine {
+                set: name.to_string(),
+                kind: self.kind,
+            });
+        }
+        self.check_set_nodes(name, segments.iter().flatten())?;
+        self.edges.insert(name.to_string(), segments);
+        Ok(())
+    }
+
+    /// Names a point set; replaces a set of the same name.
+    pub fn insert_point_set(&mut self, name: &str, nodes: Vec<usize>) -> Result<(), MeshError> {
+        self.check_set_nodes(name, nodes.iter())?;
+        self.points.insert(name.to_string(), nodes);
+        Ok(())
+    }
+
+    fn check_set_nodes<'a>(
+        &self,
+        name: &str,
+        mut nodes: impl Iterator<Item = &'a usize>,
+    ) -> Result<(), MeshError> {
+        match nodes.find(|&&n| n >= self.nodes.len()) {
+            Some(&node) => Err(MeshError::SetNodeOutOfRange {
+                set: name.to_string(),
+                node,
+                node_count: self.nodes.len(),
+            }),
+            None => Ok(()),
+        }
+    }
+
     /// Structured mesh of `[0, lx] × [0, ly]` with `nx × ny` Q8 elements, graded toward all edges by
     /// `grading` (1 = uniform). Edges are named `left` (X = 0), `right` (X = lx), `bottom` (Y = 0),
     /// `top` (Y = ly); segments run in increasing coordinate. Mid-side nodes sit at edge midpoints,
-    /// so every element is an affine rectangle.
+    /// so every element is an affine rectangle. Point sets `centre`, `left_middle`,
+    /// `right_middle`, `bottom_middle`, `top_middle` hold the node nearest to each.
     pub fn rectangle(
         lx: f64,
         ly: f64,
@@ -96,24 +289,18 @@ impl Mesh {
         ny: usize,
         grading: f64,
     ) -> Result<Mesh, MeshError> {
-        for (what, value) in [("lx", lx), ("ly", ly), ("nx", nx as f64), ("ny", ny as f64)] {
-            if value.is_nan() || value <= 0.0 || !value.is_finite() {
-                return Err(MeshError::NotPositive { what, value });
-            }
-        }
-        if grading.is_nan() || grading < 1.0 || !grading.is_finite() {
-            return Err(MeshError::Grading(grading));
-        }
+        check_sizes(
+            &[("lx", lx), ("ly", ly), ("nx", nx as f64), ("ny", ny as f64)],
+            grading,
+        )?;
         let xs = graded_breakpoints(lx, nx, grading);
         let ys = graded_breakpoints(ly, ny, grading);
         let (nodes, numbering) = NodeGrid::number(&xs, &ys);
-        let mut mesh = Mesh {
-            nodes,
-            elements: numbering.elements(),
-            edges: numbering.edges(),
-            points: BTreeMap::new(),
-            grid: Some(StructuredGrid { xs, ys }),
-        };
+        let mut mesh = Mesh::new(ElementKind::Quad8, nodes, numbering.connectivity())?;
+        for (name, segments) in numbering.edges() {
+            mesh.insert_edge_set(&name, segments)?;
+        }
+        mesh.grid = Some(StructuredGrid { xs, ys });
         // Points for minimal in-plane supports: the centre, and the middle of each edge.
         for (name, point) in [
             ("centre", [0.5 * lx, 0.5 * ly]),
@@ -123,22 +310,79 @@ impl Mesh {
             ("top_middle", [0.5 * lx, ly]),
         ] {
             let node = mesh.nearest_node(point);
-            mesh.points.insert(name.to_string(), vec![node]);
+            mesh.insert_point_set(name, vec![node])?;
         }
         Ok(mesh)
     }
 
-    /// Node coordinates of element `e` in element order.
-    pub fn element_coordinates(&self, e: usize) -> [[f64; 2]; QUAD8_NODES] {
-        let mut c = [[0.0; 2]; QUAD8_NODES];
-        for (k, &n) in self.elements[e].iter().enumerate() {
-            c[k] = self.nodes[n];
-        }
-        c
+    /// Structured mesh of the segment $`[0, L]`$ of the X axis with `n` line elements of `kind`
+    /// ([`ElementKind::Line3`] or [`ElementKind::Hermite2`]), graded toward both ends by
+    /// `grading` (the same [`graded_breakpoints`] as the rectangle). Nodes are numbered left to
+    /// right (a Line3's middle node between its ends). Point sets `left` (X = 0) and `right`
+    /// (X = L).
+    pub fn line(length: f64, n: usize, grading: f64, kind: ElementKind) -> Result<Mesh, MeshError> {
+        check_sizes(&[("length", length), ("n", n as f64)], grading)?;
+        let xs = graded_breakpoints(length, n, grading);
+        let (nodes, connectivity): (Vec<f64>, Vec<usize>) = match kind {
+            ElementKind::Hermite2 => (xs.clone(), (0..n).flat_map(|e| [e, e + 1]).collect()),
+            ElementKind::Line3 => {
+                let positions = (0..=2 * n)
+                    .map(|k| {
+                        if k.is_multiple_of(2) {
+                            xs[k / 2]
+                        } else {
+                            0.5 * (xs[k / 2] + xs[k / 2 + 1])
+                        }
+                    })
+                    .collect();
+                let elements = (0..n).flat_map(|e| [2 * e, 2 * e + 2, 2 * e + 1]).collect();
+                (positions, elements)
+            }
+            ElementKind::Quad8 => return Err(MeshError::NotALineElement(kind)),
+        };
+        let last = nodes.len() - 1;
+        let nodes = nodes.into_iter().map(|x| [x, 0.0]).collect();
+        let mut mesh = Mesh::new(kind, nodes, connectivity)?;
+        mesh.insert_point_set("left", vec![0])?;
+        mesh.insert_point_set("right", vec![last])?;
+        mesh.grid = Some(StructuredGrid { xs, ys: Vec::new() });
+        Ok(mesh)
     }
 
-    /// Sorted, de-duplicated nodes of a named edge or point set (`None` if there is no such set).
-    pub fn edge_nodes(&self, name: &str) -> Option<Vec<usize>> {
+    /// Number of elements.
+    pub fn element_count(&self) -> usize {
+        self.connectivity.len() / self.kind.nodes()
+    }
+
+    /// The nodes of element `e`, in the element's order.
+    pub fn element_nodes(&self, e: usize) -> &[usize] {
+        let per_element = self.kind.nodes();
+        &self.connectivity[e * per_element..][..per_element]
+    }
+
+    /// The nodes of every element, in element order.
+    pub fn elements(&self) -> std::slice::ChunksExact<'_, usize> {
+        self.connectivity.chunks_exact(self.kind.nodes())
+    }
+
+    /// [`Self::element_nodes`] for code monomorphised over the element `E` (the length is the
+    /// constant `E::NODES`).
+    #[inline(always)]
+    pub(crate) fn nodes_of<E: Element>(&self, e: usize) -> &[usize] {
+        &self.connectivity[e * E::NODES..][..E::NODES]
+    }
+
+    /// Node coordinates of element `e` in element order.
+    pub fn element_coordinates(&self, e: usize) -> Vec<[f64; 2]> {
+        self.element_nodes(e)
+            .iter()
+            .map(|&n| self.nodes[n])
+            .collect()
+    }
+
+    /// Sorted, de-duplicated nodes of a named point or edge set (`None` if there is no such
+    /// set; a point set wins over an edge set of the same name).
+    pub fn boundary_nodes(&self, name: &str) -> Option<Vec<usize>> {
         if let Some(points) = self.points.get(name) {
             return Some(points.clone());
         }
@@ -150,7 +394,7 @@ impl Mesh {
     }
 
     /// Names of the edge and point sets.
-    pub fn edge_names(&self) -> Vec<&str> {
+    pub fn boundary_names(&self) -> Vec<&str> {
         self.edges
             .keys()
             .chain(self.points.keys())
@@ -219,12 +463,12 @@ impl NodeGrid {
     }
 
     /// Element connectivity in VTK Q8 order, row by row.
-    fn elements(&self) -> Vec<[usize; QUAD8_NODES]> {
-        let mut elements = Vec::with_capacity(self.nx * self.ny);
+    fn connectivity(&self) -> Vec<usize> {
+        let mut elements = Vec::with_capacity(8 * self.nx * self.ny);
         for ey in 0..self.ny {
             for ex in 0..self.nx {
                 let (i, j) = (2 * ex, 2 * ey);
-                elements.push([
+                elements.extend([
                     self.at(i, j),
                     self.at(i + 2, j),
                     self.at(i + 2, j + 2),
@@ -272,13 +516,13 @@ mod tests {
         let m = Mesh::rectangle(4.0, 2.0, 4, 2, 1.0).unwrap();
         // (2nx+1)(2ny+1) − nx ny
         assert_eq!(m.nodes.len(), 9 * 5 - 8);
-        assert_eq!(m.elements.len(), 8);
-        assert_eq!(m.edge_nodes("left").unwrap().len(), 5);
-        assert_eq!(m.edge_nodes("top").unwrap().len(), 9);
-        for &n in &m.edge_nodes("right").unwrap() {
+        assert_eq!(m.element_count(), 8);
+        assert_eq!(m.boundary_nodes("left").unwrap().len(), 5);
+        assert_eq!(m.boundary_nodes("top").unwrap().len(), 9);
+        for &n in &m.boundary_nodes("right").unwrap() {
             assert_eq!(m.nodes[n][0], 4.0);
         }
-        for &n in &m.edge_nodes("top").unwrap() {
+        for &n in &m.boundary_nodes("top").unwrap() {
             assert_eq!(m.nodes[n][1], 2.0);
         }
     }
@@ -304,84 +548,33 @@ mod tests {
 }
 
 impl Mesh {
-    /// The element containing `point` and its reference coordinates $`(\xi,\eta)`$. On a
-    /// structured rectangle, a binary search per axis ($`O(\log n)`$); otherwise a bounding-box
-    /// scan of the elements with Newton inversion of the isoparametric map. `None` outside the
-    /// mesh.
+    /// The element containing `point` and its reference coordinates. On a structured mesh, a
+    /// binary search per axis ($`O(\log n)`$); otherwise a scan of the elements, each inverting
+    /// its map ([`Element::reference_of`]). `None` outside the mesh (a line mesh: off the
+    /// segment or off the axis).
     pub fn locate(&self, point: [f64; 2]) -> Option<(usize, [f64; 2])> {
-        if let Some(grid) = &self.grid {
-            let (ex, xi) = StructuredGrid::interval(&grid.xs, point[0])?;
-            let (ey, eta) = StructuredGrid::interval(&grid.ys, point[1])?;
-            return Some((ey * (grid.xs.len() - 1) + ex, [xi, eta]));
+        match &self.grid {
+            Some(grid) => grid.locate(point),
+            None => self.locate_by_scan(point),
         }
-        self.locate_by_scan(point)
     }
 
-    /// [`Self::locate`] for a general mesh: scan of the elements' bounding boxes.
+    /// [`Self::locate`] for a general mesh: the first element, in element order, whose map's
+    /// inverse puts `point` in its reference domain.
     pub fn locate_by_scan(&self, point: [f64; 2]) -> Option<(usize, [f64; 2])> {
-        use super::element::Quad8;
-        let tolerance = 1e-10;
-        for (e, nodes) in self.elements.iter().enumerate() {
-            let (mut x0, mut x1, mut y0, mut y1) = (
-                f64::INFINITY,
-                f64::NEG_INFINITY,
-                f64::INFINITY,
-                f64::NEG_INFINITY,
-            );
-            for &n in nodes {
-                let [x, y] = self.nodes[n];
-                x0 = x0.min(x);
-                x1 = x1.max(x);
-                y0 = y0.min(y);
-                y1 = y1.max(y);
-            }
-            let slack = tolerance * ((x1 - x0) + (y1 - y0));
-            if point[0] < x0 - slack
-                || point[0] > x1 + slack
-                || point[1] < y0 - slack
-                || point[1] > y1 + slack
-            {
-                continue;
-            }
-            let coordinates = self.element_coordinates(e);
-            let mut reference = [0.0, 0.0];
-            for _ in 0..20 {
-                let n = Quad8::shape_values(reference[0], reference[1]);
-                let dn = Quad8::shape_reference_gradients(reference[0], reference[1]);
-                let mut x = [0.0; 2];
-                let mut jac = [[0.0; 2]; 2];
-                for k in 0..QUAD8_NODES {
-                    for a in 0..2 {
-                        x[a] += n[k] * coordinates[k][a];
-                        for b in 0..2 {
-                            jac[a][b] += coordinates[k][a] * dn[k][b];
-                        }
-                    }
-                }
-                let r = [point[0] - x[0], point[1] - x[1]];
-                let det = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
-                if det.abs() < f64::MIN_POSITIVE {
-                    break;
-                }
-                let d = [
-                    (jac[1][1] * r[0] - jac[0][1] * r[1]) / det,
-                    (-jac[1][0] * r[0] + jac[0][0] * r[1]) / det,
-                ];
-                reference[0] += d[0];
-                reference[1] += d[1];
-                if d[0].abs() + d[1].abs() < 1e-14 {
-                    break;
-                }
-            }
-            if reference[0].abs() <= 1.0 + 1e-9 && reference[1].abs() <= 1.0 + 1e-9 {
-                return Some((e, reference));
-            }
-        }
-        None
+        with_element!(self.kind, E => self.locate_by_scan_on::<E>(point))
     }
 
-    /// Value at `point` of a nodal field stored node-major with `field_count` fields per node
-    /// (`values[node * field_count + field]`). `None` outside the mesh.
+    fn locate_by_scan_on<E: Element>(&self, point: [f64; 2]) -> Option<(usize, [f64; 2])> {
+        (0..self.element_count()).find_map(|e| {
+            E::reference_of(&self.element_coordinates(e), point).map(|reference| (e, reference))
+        })
+    }
+
+    /// Value at `point` of field `field` of nodal dofs stored node-major with `field_count`
+    /// fields per node and the element's components per field
+    /// (`values[(node * field_count + field) * components + component]`; for Lagrange
+    /// elements `values[node * field_count + field]`). `None` outside the mesh.
     pub fn interpolate(
         &self,
         values: &[f64],
@@ -389,15 +582,33 @@ impl Mesh {
         field: usize,
         point: [f64; 2],
     ) -> Option<f64> {
-        let (e, [xi, eta]) = self.locate(point)?;
-        let n = super::element::Quad8::shape_values(xi, eta);
-        Some(
-            self.elements[e]
-                .iter()
-                .enumerate()
-                .map(|(k, &node)| n[k] * values[node * field_count + field])
-                .sum(),
-        )
+        let (e, reference) = self.locate(point)?;
+        Some(with_element!(self.kind, E => {
+            self.interpolate_on::<E, { E::FUNCTIONS }>(e, reference, values, field_count, field)
+        }))
+    }
+
+    /// [`Self::interpolate`] in element `e` at `reference`: $`\sum_b \varphi_b U_b`$ in local
+    /// function order.
+    fn interpolate_on<E: Element, const B: usize>(
+        &self,
+        e: usize,
+        reference: [f64; 2],
+        values: &[f64],
+        field_count: usize,
+        field: usize,
+    ) -> f64 {
+        let mut weights = [0.0; B];
+        E::value_weights(&self.element_coordinates(e), reference, &mut weights);
+        let nodes = self.nodes_of::<E>(e);
+        weights
+            .iter()
+            .enumerate()
+            .map(|(b, weight)| {
+                let (node, component) = (nodes[b / E::COMPONENTS], b % E::COMPONENTS);
+                weight * values[(node * field_count + field) * E::COMPONENTS + component]
+            })
+            .sum()
     }
 
     /// Bounding box `[x0, x1, y0, y1]`.
@@ -458,7 +669,7 @@ mod locate_tests {
                 let n = crate::fem::element::Quad8::shape_values(xi, eta);
                 let c = mesh.element_coordinates(e);
                 let mut x = [0.0; 2];
-                for k in 0..QUAD8_NODES {
+                for k in 0..8 {
                     x[0] += n[k] * c[k][0];
                     x[1] += n[k] * c[k][1];
                 }

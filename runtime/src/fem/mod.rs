@@ -1,4 +1,5 @@
-//! Finite-element building blocks: Q8 element values, meshes, dofs, loads, assembly.
+//! Finite-element building blocks: the element contract and its elements (Q8, Line3,
+//! Hermite2), meshes with named boundary sets, dofs, loads, assembly.
 
 pub mod assembly;
 pub mod dofs;
@@ -7,7 +8,9 @@ pub mod loads;
 pub mod mesh;
 
 pub use assembly::{Assembler, Parallelism, TaylorTape};
-pub use dofs::{DirichletCondition, DofMap};
-pub use element::{ElementValues, GaussRule, Quad8};
-pub use loads::{BodyLoad, EdgeTraction, LoadVectors};
-pub use mesh::{Mesh, StructuredGrid};
+pub use dofs::{DirichletCondition, DofMap, NodalComponent};
+pub use element::{
+    Element, ElementKind, ElementValues, GaussRule, Hermite2, JacobianError, Line3, Quad8,
+};
+pub use loads::{BodyLoad, EdgeTraction, LoadError, LoadVectors, Loads, PointLoad};
+pub use mesh::{Mesh, MeshError, StructuredGrid};

@@ -13,6 +13,21 @@
 //! $`2\times 2`$ gradient block). When it fails, the discrete problem's solutions depend on
 //! the mesh: an envelope model has stopped being valid there.
 //!
+//! **Elements, lines and second derivatives.** The check runs on any element, at the points of
+//! its full rule, with the jet from the element's basis. On a line mesh the only direction is
+//! $`\mathbf n = \mathbf e_X`$ (sampling others would report the missing $`Y`$ stiffness as a
+//! zero margin). When some field carries second derivatives (a beam's $`v''`$ on the cubic
+//! Hermite line, a Kirchhoff plate's $`w_{,XX}, w_{,XY}, w_{,YY}`$) the condition is on the
+//! symbol of each field's *highest* derivatives: with the plane wave's monomials
+//! $`m_X = n_X`$, $`m_{XX} = n_X^2`$, $`m_{XY} = n_X n_Y`$, …,
+//! $$`A_{ij}(\mathbf n) = \sum_{\alpha\in P_i}\sum_{\beta\in P_j}
+//! \frac{\partial^2\psi}{\partial(\partial^\alpha f_i)\,\partial(\partial^\beta f_j)}\,
+//! m_\alpha m_\beta,`$$
+//! $`P_i`$ the derivatives of highest order of field $`i`$ in the jet (first-order fields keep
+//! $`X, Y`$). Lower-order terms do not enter: a beam under compression,
+//! $`\tfrac12 EI v''^2 - \tfrac12\lambda v'^2`$, stays elliptic ($`A = EI`$) — buckling is an
+//! instability of the discrete problem, not a loss of ellipticity.
+//!
 //! **Fields without gradient stiffness.** A field $`f`$ whose second derivatives
 //! $`\partial^2\psi/\partial(\partial_a f)\,\partial(\partial_b f)`$ vanish identically (no term's
 //! tangent pattern holds such an entry; e.g. the envelope $`w`$ of the pure membrane model,
@@ -33,8 +48,8 @@
 //! Only the diagonal $`k_f`$ is checked: couplings of $`f`$ to other fields' gradients (which
 //! also act at the oscillation scale, and vanish on a flat state) are not.
 
-use crate::fem::element::{ElementValues, GaussRule, QUAD8_NODES, derivative_row};
-use crate::model::{Derivative, EnergyModel, ModelSpec};
+use crate::fem::element::{Element, ElementValues, with_element};
+use crate::model::{Derivative, EnergyModel, ModelSpec, QuadratureRule};
 use crate::problem::Problem;
 use rayon::prelude::*;
 
@@ -138,11 +153,65 @@ pub fn gradient_free_fields(spec: &ModelSpec) -> Vec<usize> {
         .collect()
 }
 
-/// Second derivatives at one quadrature point, summed over terms: the gradient block
-/// $`H`$ (index `2 * slot + axis` of the gradient fields) and, per gradient-free field, the
-/// value stiffness $`k_f`$ with the sum of the terms' magnitudes.
+/// The principal part of a density: the fields with derivatives (*slots*, in field order), and
+/// the rows of the principal block $`H`$ — each slot's derivatives of the highest order the
+/// field has in the jet.
+///
+/// For a first-order density (every field's highest derivative is first order) the rows are
+/// $`(X, Y)`$ per slot, row `2 * slot + axis`; the acoustic tensor is formed from the three
+/// blocks of [`worst_direction`]. When some field has second derivatives the rows of that
+/// field are its second derivatives present in the jet (those of a first-order field stay
+/// $`X, Y`$), and $`A(\mathbf n)`$ is formed by [`worst_direction_of_principal`].
+struct PrincipalPart {
+    /// The fields with derivatives.
+    fields: Vec<usize>,
+    /// Whether some field's highest derivative is of second order.
+    second_order: bool,
+    /// `(slot, derivative)` of each row of $`H`$.
+    rows: Vec<(usize, Derivative)>,
+}
+
+impl PrincipalPart {
+    fn of(spec: &ModelSpec) -> Self {
+        let fields: Vec<usize> = (0..spec.fields.len())
+            .filter(|&f| spec.needs_gradient(f))
+            .collect();
+        let order = |f: usize| {
+            let orders = spec.jet.iter().filter(|e| e.field == f);
+            orders.map(|e| e.derivative.order()).max().unwrap_or(0)
+        };
+        let second_order = fields.iter().any(|&f| order(f) >= 2);
+        let mut rows = Vec::new();
+        for (slot, &f) in fields.iter().enumerate() {
+            if second_order && order(f) >= 2 {
+                for d in [Derivative::XX, Derivative::XY, Derivative::YY] {
+                    if spec.jet.iter().any(|e| e.field == f && e.derivative == d) {
+                        rows.push((slot, d));
+                    }
+                }
+            } else {
+                rows.extend([(slot, Derivative::X), (slot, Derivative::Y)]);
+            }
+        }
+        PrincipalPart {
+            fields,
+            second_order,
+            rows,
+        }
+    }
+
+    /// The row of $`H`$ holding jet entry `(field, derivative)`, if it is principal.
+    fn row(&self, field: usize, derivative: Derivative) -> Option<usize> {
+        let slot = self.fields.iter().position(|&f| f == field)?;
+        self.rows.iter().position(|&row| row == (slot, derivative))
+    }
+}
+
+/// Second derivatives at one quadrature point, summed over terms: the principal block
+/// $`H`$ (rows of [`PrincipalPart`]) and, per gradient-free field, the value stiffness
+/// $`k_f`$ with the sum of the terms' magnitudes.
 struct PointHessian {
-    gradient_block: Vec<f64>,
+    principal_block: Vec<f64>,
     value_stiffness: Vec<(f64, f64)>,
 }
 
@@ -150,67 +219,94 @@ struct PointHessian {
 struct PointCheck {
     weight: f64,
     location: [f64; 2],
-    /// Worst direction of the gradient block: margin, angle and slot.
+    /// Worst direction of the principal block: margin, angle and slot.
     gradient: Option<(f64, f64, usize)>,
     value_stiffness: Vec<(f64, f64)>,
 }
 
+/// Where each term-local jet entry of one term goes, found once per check: its basis row, its
+/// principal row (if principal) and its gradient-free slot (if a gradient-free field's value).
+struct TermTable {
+    basis_rows: Vec<(usize, usize)>,
+    principal_rows: Vec<Option<usize>>,
+    value_slots: Vec<Option<usize>>,
+}
+
+impl TermTable {
+    fn all(
+        spec: &ModelSpec,
+        derivatives: &[Derivative],
+        principal: &PrincipalPart,
+        gradient_free: &[usize],
+    ) -> Vec<TermTable> {
+        spec.terms
+            .iter()
+            .map(|term| {
+                let entries = term.jet.iter().map(|&i| spec.jet[i]);
+                TermTable {
+                    basis_rows: entries
+                        .clone()
+                        .map(|e| {
+                            let row = derivatives.iter().position(|&d| d == e.derivative);
+                            (e.field, row.expect("Problem::new checked the derivatives"))
+                        })
+                        .collect(),
+                    principal_rows: entries
+                        .clone()
+                        .map(|e| principal.row(e.field, e.derivative))
+                        .collect(),
+                    value_slots: entries
+                        .map(|e| {
+                            let value = e.derivative == Derivative::Value;
+                            let slot = gradient_free.iter().position(|&f| f == e.field);
+                            slot.filter(|_| value)
+                        })
+                        .collect(),
+                }
+            })
+            .collect()
+    }
+}
+
 /// Evaluates every term's tangent at quadrature point `q` of `values` and gathers
-/// [`PointHessian`].
+/// [`PointHessian`]; `local[b * nf + f]` is the dof of local function `b` of field `f`.
 fn point_hessian<M: EnergyModel>(
     model: &M,
-    nodal: &[&[f64]],
+    local: &[f64],
     values: &ElementValues,
     q: usize,
-    gradient_fields: &[usize],
-    gradient_free: &[usize],
+    (size, gradient_free): (usize, usize),
+    tables: &[TermTable],
     hessians: &mut [Vec<f64>],
 ) -> PointHessian {
     let spec = M::SPEC;
-    let m = gradient_fields.len();
-    let slot = |field: usize| gradient_fields.iter().position(|&f| f == field);
-    let axis = |d: Derivative| match d {
-        Derivative::X => Some(0),
-        Derivative::Y => Some(1),
-        Derivative::Value | Derivative::XX | Derivative::XY | Derivative::YY => None,
-    };
+    let nf = spec.fields.len();
     let mut point = PointHessian {
-        gradient_block: vec![0.0; 4 * m * m],
-        value_stiffness: vec![(0.0, 0.0); gradient_free.len()],
+        principal_block: vec![0.0; size * size],
+        value_stiffness: vec![(0.0, 0.0); gradient_free],
     };
-    for (t, term) in spec.terms.iter().enumerate() {
-        let jet: Vec<f64> = term
-            .jet
+    for (t, (term, table)) in spec.terms.iter().zip(tables).enumerate() {
+        let jet: Vec<f64> = table
+            .basis_rows
             .iter()
-            .map(|&i| {
-                let entry = spec.jet[i];
-                let row = derivative_row(entry.derivative)
-                    .expect("Problem::new refuses derivatives the element does not supply");
-                let basis = &values.basis[q][row];
-                (0..QUAD8_NODES)
-                    .map(|k| basis[k] * nodal[k][entry.field])
+            .map(|&(field, row)| {
+                let basis = values.row(q, row);
+                (0..basis.len())
+                    .map(|k| basis[k] * local[k * nf + field])
                     .sum()
             })
             .collect();
         model.tangent(t, &jet, &mut hessians[t]);
         for (p, &(i, j)) in term.tangent_pattern.iter().enumerate() {
-            let (ei, ej) = (spec.jet[term.jet[i]], spec.jet[term.jet[j]]);
             let value = hessians[t][p];
-            if let (Some(ai), Some(aj), Some(si), Some(sj)) = (
-                axis(ei.derivative),
-                axis(ej.derivative),
-                slot(ei.field),
-                slot(ej.field),
-            ) {
-                let (r, c) = (2 * si + ai, 2 * sj + aj);
-                point.gradient_block[r * 2 * m + c] += value;
+            if let (Some(r), Some(c)) = (table.principal_rows[i], table.principal_rows[j]) {
+                point.principal_block[r * size + c] += value;
                 if r != c {
-                    point.gradient_block[c * 2 * m + r] += value;
+                    point.principal_block[c * size + r] += value;
                 }
             }
-            if ei == ej
-                && ei.derivative == Derivative::Value
-                && let Some(s) = gradient_free.iter().position(|&f| f == ei.field)
+            if i == j
+                && let Some(s) = table.value_slots[i]
             {
                 point.value_stiffness[s].0 += value;
                 point.value_stiffness[s].1 += value.abs();
@@ -221,13 +317,17 @@ fn point_hessian<M: EnergyModel>(
 }
 
 /// $`(\cos^2\theta, \cos\theta\sin\theta, \sin^2\theta)`$ and $`\theta`$ of the sampled
-/// directions $`\theta_k = k\pi/`$[`DIRECTIONS`].
-fn direction_table() -> [([f64; 3], f64); DIRECTIONS] {
-    std::array::from_fn(|k| {
-        let angle = std::f64::consts::PI * k as f64 / DIRECTIONS as f64;
-        let (s, c) = angle.sin_cos();
-        ([c * c, c * s, s * s], angle)
-    })
+/// directions: $`\theta_k = k\pi/`$[`DIRECTIONS`] on a plane mesh, $`\theta = 0`$ alone on a
+/// line (the only direction there is).
+fn direction_table(dimension: usize) -> Vec<([f64; 3], f64)> {
+    let count = if dimension == 1 { 1 } else { DIRECTIONS };
+    (0..count)
+        .map(|k| {
+            let angle = std::f64::consts::PI * k as f64 / DIRECTIONS as f64;
+            let (s, c) = angle.sin_cos();
+            ([c * c, c * s, s * s], angle)
+        })
+        .collect()
 }
 
 /// Smallest relative pivot of $`A(\mathbf n)`$ over the sampled directions at one point:
@@ -239,11 +339,7 @@ fn direction_table() -> [([f64; 3], f64); DIRECTIONS] {
 /// It runs at the nine Gauss points of every element at every step end, so the usual sizes
 /// (one to six fields with gradients) get their own copy with `m` a constant and the arrays on
 /// the stack, which the compiler unrolls; any larger `m` takes the same code on the heap.
-fn worst_direction(
-    h: &[f64],
-    m: usize,
-    directions: &[([f64; 3], f64); DIRECTIONS],
-) -> (f64, f64, usize) {
+fn worst_direction(h: &[f64], m: usize, directions: &[([f64; 3], f64)]) -> (f64, f64, usize) {
     macro_rules! on_stack {
         ($m:literal) => {
             worst_direction_in(
@@ -277,7 +373,7 @@ fn worst_direction(
 fn worst_direction_in(
     h: &[f64],
     m: usize,
-    directions: &[([f64; 3], f64); DIRECTIONS],
+    directions: &[([f64; 3], f64)],
     blocks: &mut [[f64; 3]],
     acoustic: &mut [f64],
 ) -> (f64, f64, usize) {
@@ -308,25 +404,73 @@ fn worst_direction_in(
     worst
 }
 
-/// Checks strong ellipticity at the 3×3 Gauss points of every element for the state `free` at
-/// load `load`, and the pointwise stability $`k_f \ge 0`$ of every field without gradient
+/// Smallest relative pivot of $`A(\mathbf n)`$ over the sampled directions for a principal part
+/// with second derivatives: with the plane wave's derivative monomials
+/// $`m_X = c,\ m_Y = s,\ m_{XX} = c^2,\ m_{XY} = cs,\ m_{YY} = s^2`$
+/// ($`\mathbf n = (c, s)`$),
+/// $$`A_{ij}(\mathbf n) = \sum_{\alpha \in P_i}\sum_{\beta \in P_j} H_{(i\alpha)(j\beta)}\,
+/// m_\alpha m_\beta,`$$
+/// $`P_i`$ the principal derivatives of slot $`i`$ — the symbol of the highest derivatives,
+/// whose positivity is the Legendre–Hadamard condition of a density of mixed order.
+fn worst_direction_of_principal(
+    h: &[f64],
+    principal: &PrincipalPart,
+    directions: &[([f64; 3], f64)],
+) -> (f64, f64, usize) {
+    let m = principal.fields.len();
+    let size = principal.rows.len();
+    let mut acoustic = vec![0.0; m * m];
+    let mut worst = (f64::INFINITY, 0.0, 0);
+    for &(weights, angle) in directions {
+        let (c, s) = (angle.cos(), angle.sin());
+        let monomial = |d: Derivative| match d {
+            Derivative::X => c,
+            Derivative::Y => s,
+            Derivative::XX => weights[0],
+            Derivative::XY => weights[1],
+            Derivative::YY => weights[2],
+            Derivative::Value => 0.0,
+        };
+        acoustic.iter_mut().for_each(|a| *a = 0.0);
+        for (r, &(i, alpha)) in principal.rows.iter().enumerate() {
+            for (col, &(j, beta)) in principal.rows.iter().enumerate() {
+                acoustic[i * m + j] += h[r * size + col] * monomial(alpha) * monomial(beta);
+            }
+        }
+        let scale = (0..m).fold(0.0_f64, |scale, i| scale.max(acoustic[i * m + i].abs()));
+        let (pivot, at) = smallest_pivot(&mut acoustic, m);
+        let margin = if scale > 0.0 { pivot / scale } else { 0.0 };
+        if margin < worst.0 {
+            worst = (margin, angle, at);
+        }
+    }
+    worst
+}
+
+/// Checks strong ellipticity at the points of every element's full rule for the state `free`
+/// at load `load`, and the pointwise stability $`k_f \ge 0`$ of every field without gradient
 /// stiffness ([`gradient_free_fields`]) at the same points. All terms are evaluated at the same
 /// points (whatever rule they integrate with).
+///
+/// On any element: the basis rows give the jet, and on a line mesh the only direction is
+/// $`\mathbf n = \mathbf e_X`$. For a density with second derivatives (a beam's $`v''^2`$,
+/// a Kirchhoff plate) the condition is on the symbol of the highest derivatives
+/// (module documentation): a beam's $`-\tfrac12\lambda v'^2`$ is of lower order and
+/// is no loss of ellipticity, while $`EI < 0`$ would be.
 pub fn legendre_hadamard<M: EnergyModel>(
     problem: &Problem<M>,
     free: &[f64],
     load: f64,
 ) -> EllipticityReport {
     let spec = M::SPEC;
-    let nf = spec.fields.len();
-    let gradient_fields: Vec<usize> = (0..nf).filter(|&f| spec.needs_gradient(f)).collect();
+    let principal = PrincipalPart::of(spec);
     let gradient_free = gradient_free_fields(spec);
     let mut report = unviolated_report(spec, &gradient_free);
-    if gradient_fields.is_empty() && gradient_free.is_empty() {
+    if principal.fields.is_empty() && gradient_free.is_empty() {
         return report;
     }
-    let checks = point_checks(problem, free, load, &gradient_fields, &gradient_free);
-    fold_checks(&mut report, &checks, spec, &gradient_fields);
+    let checks = point_checks(problem, free, load, &principal, &gradient_free);
+    fold_checks(&mut report, &checks, spec, &principal.fields);
     report
 }
 
@@ -353,56 +497,79 @@ fn unviolated_report(spec: &ModelSpec, gradient_free: &[usize]) -> EllipticityRe
     }
 }
 
-/// The checks of every 3×3 Gauss point, element by element (elements whose geometry fails
-/// give none). They run in parallel over elements and come back in element order, so the
-/// report does not depend on the thread count.
+/// The checks of every point of the element's full rule, element by element (elements whose
+/// geometry fails give none). They run in parallel over elements and come back in element
+/// order, so the report does not depend on the thread count.
 fn point_checks<M: EnergyModel>(
     problem: &Problem<M>,
     free: &[f64],
     load: f64,
-    gradient_fields: &[usize],
+    principal: &PrincipalPart,
+    gradient_free: &[usize],
+) -> Vec<Vec<PointCheck>> {
+    let mesh = problem.assembler.mesh();
+    with_element!(mesh.kind, E => {
+        point_checks_on::<M, E>(problem, free, load, principal, gradient_free)
+    })
+}
+
+/// [`point_checks`] on a mesh of elements `E`.
+fn point_checks_on<M: EnergyModel, E: Element>(
+    problem: &Problem<M>,
+    free: &[f64],
+    load: f64,
+    principal: &PrincipalPart,
     gradient_free: &[usize],
 ) -> Vec<Vec<PointCheck>> {
     let spec = M::SPEC;
     let nf = spec.fields.len();
-    let m = gradient_fields.len();
+    let m = principal.fields.len();
     let assembler = &problem.assembler;
     let mesh = assembler.mesh();
     let global = assembler.dofs().expand(free, load);
-    let rule = GaussRule::square(3);
-    let directions = direction_table();
+    let rule = E::quadrature(QuadratureRule::Full);
+    let directions = direction_table(E::DIMENSION);
     let hessians: Vec<Vec<f64>> = spec
         .terms
         .iter()
         .map(|t| vec![0.0; t.tangent_pattern.len()])
         .collect();
-    (0..mesh.elements.len())
+    let tables = TermTable::all(spec, E::DERIVATIVES, principal, gradient_free);
+    let sizes = (principal.rows.len(), gradient_free.len());
+    (0..mesh.element_count())
         .into_par_iter()
         .map_with(hessians, |hessians, e| {
-            let Ok(values) = ElementValues::new(e, &mesh.element_coordinates(e), &rule, true)
-            else {
+            let Ok(values) = ElementValues::new::<E>(e, &mesh.element_coordinates(e), &rule) else {
                 return Vec::new();
             };
-            let nodal: Vec<&[f64]> = mesh.elements[e]
-                .iter()
-                .map(|&node| &global[node * nf..(node + 1) * nf])
+            // local[b * nf + f]: local function b (node b / C, component b % C) of field f.
+            let local: Vec<f64> = (0..E::FUNCTIONS)
+                .flat_map(|b| {
+                    let node = mesh.element_nodes(e)[b / E::COMPONENTS];
+                    let start = node * nf * E::COMPONENTS + b % E::COMPONENTS;
+                    (0..nf).map(move |f| start + f * E::COMPONENTS)
+                })
+                .map(|g| global[g])
                 .collect();
-            (0..values.weights.len())
+            (0..values.point_count())
                 .map(|q| {
-                    let point = point_hessian(
-                        assembler.model(),
-                        &nodal,
-                        &values,
-                        q,
-                        gradient_fields,
-                        gradient_free,
-                        hessians,
-                    );
+                    let model = assembler.model();
+                    let point = point_hessian(model, &local, &values, q, sizes, &tables, hessians);
+                    let gradient = (m > 0).then(|| {
+                        if principal.second_order {
+                            worst_direction_of_principal(
+                                &point.principal_block,
+                                principal,
+                                &directions,
+                            )
+                        } else {
+                            worst_direction(&point.principal_block, m, &directions)
+                        }
+                    });
                     PointCheck {
                         weight: values.weights[q],
                         location: values.points[q],
-                        gradient: (m > 0)
-                            .then(|| worst_direction(&point.gradient_block, m, &directions)),
+                        gradient,
                         value_stiffness: point.value_stiffness,
                     }
                 })
@@ -567,7 +734,7 @@ mod tests {
 
     fn report(k: f64, s: f64) -> EllipticityReport {
         let mesh = Arc::new(Mesh::rectangle(2.0, 1.0, 3, 2, 1.0).unwrap());
-        let problem = Problem::new(GradientFree { k, s }, mesh, &[], &[], &[]).unwrap();
+        let problem = Problem::new(GradientFree { k, s }, mesh, &[], &Default::default()).unwrap();
         legendre_hadamard(&problem, &vec![0.0; problem.free_count()], 0.0)
     }
 
@@ -623,7 +790,7 @@ mod tests {
         // m ≥ 2 the scale max_j |A_jj| is m - 1 in every direction (1 for m = 2), so the margin
         // is -0.5 / max(m - 1, 1) at π/2. For m = 1 the margin is the sign, -1, first reached at
         // θ = 55° (the first sampled θ with tan²θ > 2).
-        let directions = direction_table();
+        let directions = direction_table(2);
         for m in 1..=8 {
             let mut c: Vec<f64> = (0..m).map(|i| 1.0 + i as f64).collect();
             let mut s = c.clone();

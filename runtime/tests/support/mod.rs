@@ -7,7 +7,7 @@
 
 use std::sync::Arc;
 
-use wrinkle_runtime::fem::{DirichletCondition, EdgeTraction, Mesh};
+use wrinkle_runtime::fem::{DirichletCondition, EdgeTraction, Loads, Mesh};
 use wrinkle_runtime::problem::Problem;
 use wrinkle_runtime::solve::path::PathState;
 use wrinkle_runtime::{
@@ -91,19 +91,18 @@ pub const LENGTH: f64 = 2.0;
 /// on `right`.
 pub fn strip_problem(model: NonlinearSpring, elements: usize) -> Problem<NonlinearSpring> {
     let mesh = Mesh::rectangle(LENGTH, 1.0, elements, 1, 1.0).unwrap();
-    let conditions = [DirichletCondition {
-        edge: "left".into(),
-        field: 0,
-        value: 0.0,
-        value_per_load: 0.0,
-    }];
+    let conditions = [DirichletCondition::fixed("left", 0)];
     let tractions = [EdgeTraction {
         edge: "right".into(),
         fields: [0, 0],
         traction: [1.0, 0.0],
         proportional: true,
     }];
-    Problem::new(model, Arc::new(mesh), &conditions, &tractions, &[]).unwrap()
+    let loads = Loads {
+        tractions: tractions.to_vec(),
+        ..Loads::default()
+    };
+    Problem::new(model, Arc::new(mesh), &conditions, &loads).unwrap()
 }
 
 /// The strain $`\varepsilon`$ of a state on the strip: $`u/X`$ at the free dof furthest from
