@@ -1,5 +1,23 @@
 //! A discrete problem: model + mesh + constraints + loads, and its residual
 //! $`R(U,\lambda) = \partial\Pi/\partial U - F_0 - \lambda F_1`$ over the free dofs.
+//!
+//! **Prescribed values** ([`DirichletCondition`], $`f_c = g_0 + \lambda g_1`$ per boundary set,
+//! field and nodal component) are eliminated: the unknowns $`U`$ are the free dofs only, and
+//! every evaluation first builds the global vector $`\bar U(U, \lambda)`$ whose constrained
+//! entries hold their known values $`g_0 + \lambda g_1`$ ([`DofMap::expand`]). The residual is
+//! the free rows of the internal forces at $`\bar U`$,
+//! $$`R(U,\lambda) = f^{int}_F\big(\bar U(U,\lambda)\big) - F_0 - \lambda F_1,`$$
+//! so the known values act as a right-hand side (in the linear case
+//! $`R = K_{FF}U + K_{FC}(g_0 + \lambda g_1) - F_0 - \lambda F_1`$: a constant force
+//! $`-K_{FC}g_0`$ and a load-proportional force $`-K_{FC}g_1`$). The tangent is
+//! $`K_{FF} = \partial R/\partial U`$; the load derivative
+//! $`\partial R/\partial\lambda = K_{FC}(\bar U)\,g_1 - F_1`$ includes the constrained dofs'
+//! rate, by one dual-number residual evaluation ([`Problem::load_derivative`]); Newton, linear
+//! buckling and Riks use only these. The ANM's Taylor mode starts at $`\bar U(U_0,\lambda_0)`$
+//! and commits the order-$`k`$ coefficient of the global vector as the free $`U_k`$ with
+//! constrained entries $`g_1\lambda_k`$ ([`DofMap::expand_increment`]): $`\bar U(a)`$ is the
+//! series of the constrained path, so every order of the right-hand side sees the prescribed
+//! motion (the constant $`g_0`$ only in the order-0 state).
 
 use crate::fem::{
     Assembler, DirichletCondition, DofMap, ElementKind, LoadVectors, Loads, Mesh, TaylorTape,

@@ -62,6 +62,18 @@ pub struct DirichletCondition {
 }
 
 impl DirichletCondition {
+    /// $`f = g_0 + \lambda g_1`$ (the value component) on `boundary`: `value` $`= g_0`$,
+    /// `value_per_load` $`= g_1`$ — a prescribed displacement, constant ($`g_1 = 0`$) or
+    /// proportional to the load parameter (displacement control). How the solvers treat it:
+    /// [`crate::problem`].
+    pub fn prescribed(boundary: &str, field: usize, value: f64, value_per_load: f64) -> Self {
+        DirichletCondition {
+            value,
+            value_per_load,
+            ..DirichletCondition::fixed(boundary, field)
+        }
+    }
+
     /// $`f = 0`$ (the value component) on `boundary`.
     pub fn fixed(boundary: &str, field: usize) -> Self {
         DirichletCondition {
