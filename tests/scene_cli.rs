@@ -62,7 +62,7 @@ fn scene_errors_are_one_line_on_stderr_with_exit_code_two() {
         String::from_utf8(wrinkle(&["scene", "--set", "material.poisson=0.6"]).stderr).unwrap();
     assert_eq!(
         stderr.trim_end(),
-        "error: --set material.poisson=0.6: key `material.poisson`: must satisfy -1 < ν < 0.5, got 0.6"
+        "error: --set material.poisson=0.6: key `material.poisson`: must satisfy -0.99 ≤ ν < 0.5 (ν → −1 makes the in-plane problem singular), got 0.6"
     );
 }
 

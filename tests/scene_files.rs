@@ -139,10 +139,13 @@ fn out_of_range_override_names_the_override_and_the_key() {
     let (line, source, key, message) = scene_error(scene.apply_override("material.poisson=0.6"));
     assert_eq!(source, "--set material.poisson=0.6");
     assert_eq!(key, "material.poisson");
-    assert_eq!(message, "must satisfy -1 < ν < 0.5, got 0.6");
+    assert_eq!(
+        message,
+        "must satisfy -0.99 ≤ ν < 0.5 (ν → −1 makes the in-plane problem singular), got 0.6"
+    );
     assert_eq!(
         line,
-        "--set material.poisson=0.6: key `material.poisson`: must satisfy -1 < ν < 0.5, got 0.6"
+        "--set material.poisson=0.6: key `material.poisson`: must satisfy -0.99 ≤ ν < 0.5 (ν → −1 makes the in-plane problem singular), got 0.6"
     );
 }
 
@@ -155,17 +158,17 @@ fn out_of_range_file_value_names_the_file_and_the_key() {
     assert_eq!(key, "material.poisson");
     assert_eq!(
         line,
-        "scene examples/scenes/x.toml: key `material.poisson`: must satisfy -1 < ν < 0.5, got 0.6"
+        "scene examples/scenes/x.toml: key `material.poisson`: must satisfy -0.99 ≤ ν < 0.5 (ν → −1 makes the in-plane problem singular), got 0.6"
     );
 }
 
 #[test]
 fn range_violations_of_every_kind_are_reported() {
     let cases = [
-        ("geometry.lx=0", "geometry.lx", "must be > 0"),
-        ("geometry.ly=-1", "geometry.ly", "must be > 0"),
+        ("geometry.lx=0", "geometry.lx", "must be ≥ 1e-6"),
+        ("geometry.ly=-1", "geometry.ly", "must be ≥ 1e-6"),
         ("material.young=0", "material.young", "must be > 0"),
-        ("material.poisson=-1", "material.poisson", "-1 < ν < 0.5"),
+        ("material.poisson=-1", "material.poisson", "-0.99 ≤ ν < 0.5"),
         (
             "material.thickness=-0.1",
             "material.thickness",
@@ -173,7 +176,11 @@ fn range_violations_of_every_kind_are_reported() {
         ),
         ("model.wavenumber=0", "model.wavenumber", "must be > 0"),
         ("model.wavenumber=inf", "model.wavenumber", "must be > 0"),
-        ("model.direction=nan", "model.direction", "finite"),
+        (
+            "model.direction=nan",
+            "model.direction",
+            "≥ -360 and at most 360",
+        ),
         ("mesh.nx=0", "mesh.nx", "between 1 and"),
         ("mesh.ny=-2", "mesh.ny", "between 1 and"),
         ("mesh.grading=0.5", "mesh.grading", "≥ 1"),
@@ -183,15 +190,23 @@ fn range_violations_of_every_kind_are_reported() {
         (
             "solver.series_tolerance=0",
             "solver.series_tolerance",
-            "must be > 0",
+            "must be ≥ 1e-14",
         ),
-        ("solver.tolerance=-1e-6", "solver.tolerance", "must be > 0"),
-        ("solver.max_steps=0", "solver.max_steps", "≥ 1"),
+        (
+            "solver.tolerance=-1e-6",
+            "solver.tolerance",
+            "must be ≥ 1e-15",
+        ),
+        (
+            "solver.max_steps=0",
+            "solver.max_steps",
+            "between 1 and 10000",
+        ),
         ("solver.max_load=-1", "solver.max_load", "≥ 0"),
         (
             "solver.max_envelope_over_h=0",
             "solver.max_envelope_over_h",
-            "must be > 0",
+            "as `solver.max_amplitude_over_h`: must be > 0",
         ),
         ("solver.perturbation=-1", "solver.perturbation", "≥ 0"),
         (

@@ -60,6 +60,12 @@ macro_rules! scene_schema {
             /// Keys set by `--set`, each with the assignment that set it last: an error about
             /// such a key names the override, not the file ([`Scene::origin_of`]).
             pub overridden: ::std::collections::BTreeMap<String, String>,
+            /// Keys given explicitly, by the scene file or `--set`, each with its spelling and
+            /// origin (a key at its default is not given). Two spellings of one key — a key and
+            /// its older alias, `material.young` and `model.parameters.young` — are refused
+            /// ([`Scene::apply_override`]); the notes of values not used as given are only
+            /// about keys given.
+            pub given: ::std::collections::BTreeMap<String, $crate::scene::Given>,
         }
 
         /// Two scenes are equal when they describe the same computation: where their keys were
@@ -79,6 +85,7 @@ macro_rules! scene_schema {
                     $($section: $Section::default(),)*
                     source: BUILT_IN_SOURCE.to_string(),
                     overridden: ::std::collections::BTreeMap::new(),
+                    given: ::std::collections::BTreeMap::new(),
                 }
             }
         }

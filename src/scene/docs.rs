@@ -55,7 +55,14 @@ fn key_row(spec: &KeySpec<Scene>, defaults: &Scene) -> String {
 
 fn alias_row(name: &str, alias: &Alias) -> String {
     let target = SCHEMA.spec(alias.target).map_or("–", |spec| spec.unit.name);
-    let (_, target_name) = alias.target.split_once('.').unwrap_or(("", alias.target));
+    let (target_section, target_name) = alias.target.split_once('.').unwrap_or(("", alias.target));
+    let same_section =
+        alias.key.split_once('.').map(|(section, _)| section) == Some(target_section);
+    let target_name = if same_section {
+        target_name
+    } else {
+        alias.target
+    };
     format!(
         "| `{name}` | {} | {target} | – | see `{target_name}` |\n",
         cell(alias.meaning)

@@ -162,6 +162,26 @@ impl<R> KeySpec<R> {
     }
 }
 
+/// One key a value set: the declared key or table entry it set (`target`), and how the input
+/// spelled it (`spelling`: the key itself, or an older alias such as
+/// `solver.max_envelope_over_h` for `solver.max_amplitude_over_h`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Assigned {
+    /// The dotted key set, e.g. `material.young` or `model.parameters.delta`.
+    pub target: String,
+    /// The dotted key as written.
+    pub spelling: String,
+}
+
+/// How and where a key was given ([`Scene::given`](crate::scene::Scene::given)).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Given {
+    /// The dotted key as written (the key itself or an older alias).
+    pub spelling: String,
+    /// Where: `scene PATH` or `--set KEY=VALUE`.
+    pub origin: String,
+}
+
 /// An older spelling of a key, still read: it converts its value and sets `target`.
 pub struct Alias {
     /// The older dotted key, e.g. `solver.max_envelope_over_h`.
@@ -195,12 +215,14 @@ impl<R> Schema<R> {
         self.keys.iter().filter(move |spec| spec.section == section)
     }
 
-    /// Applies every entry of `table`, whose keys are relative to `prefix` (empty at the root).
+    /// Applies every entry of `table`, whose keys are relative to `prefix` (empty at the root);
+    /// each key set is appended to `assigned`.
     pub fn apply_table(
         &self,
         record: &mut R,
         prefix: &str,
         table: &toml::Table,
+        assigned: &mut Vec<Assigned>,
     ) -> Result<(), KeyError> {
         for (name, value) in table {
             let key = if prefix.is_empty() {
@@ -208,30 +230,48 @@ impl<R> Schema<R> {
             } else {
                 format!("{prefix}.{name}")
             };
-            self.apply(record, &key, value)?;
+            self.apply(record, &key, value, assigned)?;
         }
         Ok(())
     }
 
     /// Sets one dotted key — a table, a key, an alias or an entry of a table — and checks the
-    /// bounds of what it set.
-    pub fn apply(&self, record: &mut R, key: &str, value: &Value) -> Result<(), KeyError> {
-        if self.sections.contains(&key) {
+    /// bounds of what it set. Every key set is appended to `assigned` (a table sets each of its
+    /// entries, one by one, so that an entry that is an alias — `model.parameters.young` — sets
+    /// its target).
+    pub fn apply(
+        &self,
+        record: &mut R,
+        key: &str,
+        value: &Value,
+        assigned: &mut Vec<Assigned>,
+    ) -> Result<(), KeyError> {
+        let spec = self.spec(key);
+        let entries_of = spec.filter(|spec| spec.binding.has_entries());
+        if self.sections.contains(&key) || entries_of.is_some() {
             return match value {
-                Value::Table(table) => self.apply_table(record, key, table),
+                Value::Table(table) => self.apply_table(record, key, table, assigned),
                 other => Err(KeyError::new(
                     key,
                     format!("expected a table, got {}", super::text::describe(other)),
                 )),
             };
         }
-        if let Some(spec) = self.spec(key) {
+        let assign = |target: &str| Assigned {
+            target: target.to_string(),
+            spelling: key.to_string(),
+        };
+        if let Some(spec) = spec {
             let binding = spec.binding;
             binding.assign(record, value).map_err(|p| spec.error(p))?;
-            return binding.check(record).map_err(|p| spec.error(p));
+            binding.check(record).map_err(|p| spec.error(p))?;
+            assigned.push(assign(spec.key));
+            return Ok(());
         }
         if let Some(alias) = self.aliases.iter().find(|alias| alias.key == key) {
-            return self.apply_alias(record, alias, value);
+            self.apply_alias(record, alias, value)?;
+            assigned.push(assign(alias.target));
+            return Ok(());
         }
         let entry = self.keys.iter().find_map(|spec| {
             let name = key.strip_prefix(spec.key)?.strip_prefix('.')?;
@@ -242,7 +282,9 @@ impl<R> Schema<R> {
             binding
                 .assign_entry(record, name, value)
                 .map_err(|p| spec.error(p))?;
-            return binding.check(record).map_err(|p| spec.error(p));
+            binding.check(record).map_err(|p| spec.error(p))?;
+            assigned.push(assign(key));
+            return Ok(());
         }
         Err(KeyError::new(key, self.unknown_key_message(key)))
     }
@@ -254,11 +296,11 @@ impl<R> Schema<R> {
             .spec(alias.target)
             .ok_or_else(|| error(format!("alias of the unknown key `{}`", alias.target)))?;
         let converted = (alias.convert)(value).map_err(error)?;
+        let as_target =
+            |problem: Problem| error(format!("as `{}`: {}", target.key, problem.message));
         let binding = target.binding;
-        binding
-            .assign(record, &converted)
-            .map_err(|p| error(p.message))?;
-        binding.check(record).map_err(|p| error(p.message))
+        binding.assign(record, &converted).map_err(as_target)?;
+        binding.check(record).map_err(as_target)
     }
 
     /// Checks the bounds of every key, in document order.

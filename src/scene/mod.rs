@@ -6,7 +6,7 @@
 //! table by hand so that every error names the dotted key and where the input came from:
 //!
 //! ```text
-//! scene examples/scenes/x.toml: key `material.poisson`: must satisfy -1 < ν < 0.5, got 0.6
+//! scene examples/scenes/x.toml: key `material.poisson`: must satisfy -0.99 ≤ ν < 0.5 (ν → −1 makes the in-plane problem singular), got 0.6
 //! --set mesh.nx=0: key `mesh.nx`: must be an integer between 1 and 100000, got 0
 //! ```
 //!
@@ -18,6 +18,7 @@
 //! `declare` (the macros), `schema` (the declarations), `docs` (the Markdown key tables); this
 //! module reads files and overrides, validates, and prints the effective scene.
 
+mod across;
 mod declare;
 mod docs;
 mod keys;
@@ -25,18 +26,25 @@ mod kinds;
 mod schema;
 mod text;
 
+pub use across::{
+    MAX_TENSION_STRAIN, MAX_WAVELENGTH_OVER_SIDE, MIN_PERTURBATION, STIFFNESS_RANGE,
+    THICKNESS_RATIO_RANGE,
+};
 pub use docs::{key_table, refresh_key_tables};
+pub use keys::Given;
 pub use schema::{
-    BUILT_IN_SOURCE, Geometry, Imperfection, KEYS, LoadKind, LoadSpec, MAX_ELEMENTS,
-    MAX_ELEMENTS_PER_SIDE, MAX_SERIES_TOLERANCE, Material, MeshSpec, ModelChoice, OutputSpec,
-    PathMethod, SECTIONS, Scene, SolverSpec, VALIDITY_CHECKS, ValiditySpec, Wavenumber,
+    BUILT_IN_SOURCE, Geometry, Imperfection, KEYS, LENGTH_RANGE, LoadKind, LoadSpec,
+    MAX_ELEMENT_ASPECT_RATIO, MAX_ELEMENTS, MAX_ELEMENTS_PER_SIDE, MAX_SERIES_TOLERANCE, MAX_STEPS,
+    MAX_VTU_LOADS, Material, MeshSpec, ModelChoice, OutputSpec, PathMethod, SECTIONS, Scene,
+    SolverSpec, VALIDITY_CHECKS, ValiditySpec, Wavenumber,
 };
 
 use crate::closed_form::ClampedRectangle;
 use crate::error::Error;
+use across::check_across_keys;
 use keys::KeyError;
 use kinds::Written;
-use schema::{SCHEMA, check_across_keys};
+use schema::SCHEMA;
 use std::fmt::Write as _;
 use std::path::Path;
 use text::{parse_override_value, syntax_message, toml_string};
@@ -56,9 +64,11 @@ impl Scene {
             source: source_name.to_string(),
             ..Scene::default()
         };
+        let mut assigned = Vec::new();
         SCHEMA
-            .apply_table(&mut scene, "", &table)
+            .apply_table(&mut scene, "", &table, &mut assigned)
             .map_err(|error| Error::scene(&origin, error.key, error.message))?;
+        scene.record_given(assigned, &origin)?;
         scene.validate()?;
         Ok(scene)
     }
@@ -117,18 +127,59 @@ impl Scene {
             parse_override_value(text).map_err(|message| Error::scene(&origin, key, message))?;
         // Apply to a copy so that a rejected override leaves the scene unchanged.
         let mut updated = self.clone();
+        let mut assigned = Vec::new();
         SCHEMA
-            .apply(&mut updated, key, &value)
+            .apply(&mut updated, key, &value, &mut assigned)
             .map_err(|error| Error::scene(&origin, error.key, error.message))?;
+        updated.record_given(assigned, &origin)?;
         updated.overridden.insert(key.to_string(), origin);
         *self = updated;
         Ok(())
     }
 
-    /// Where `key` was set: `--set KEY=VALUE` when an override set it (or its table), otherwise
+    /// Records the keys a file or an override set ([`Scene::given`]); a key given before
+    /// under another spelling (a key and its alias, in one file or across a file and `--set`) is
+    /// an error naming both: the two would silently set one value.
+    fn record_given(&mut self, assigned: Vec<keys::Assigned>, origin: &str) -> Result<(), Error> {
+        for keys::Assigned { target, spelling } in assigned {
+            if let Some(before) = self.given.get(&target)
+                && before.spelling != spelling
+            {
+                return Err(Error::scene(
+                    origin,
+                    &spelling,
+                    format!(
+                        "sets `{target}`, which `{}` ({}) sets too: give one of the two",
+                        before.spelling, before.origin
+                    ),
+                ));
+            }
+            let origin = origin.to_string();
+            self.given.insert(target, Given { spelling, origin });
+        }
+        Ok(())
+    }
+
+    /// Whether `key` was given by the scene file or `--set` (not left at its default).
+    pub fn was_given(&self, key: &str) -> bool {
+        self.given.contains_key(key)
+    }
+
+    /// `key` as the user wrote it: its older alias when that is what set it
+    /// (`model.parameters.young` for `material.young`), otherwise `key` itself.
+    pub fn spelling_of(&self, key: &str) -> String {
+        self.given
+            .get(key)
+            .map_or_else(|| key.to_string(), |given| given.spelling.clone())
+    }
+
+    /// Where `key` was set: the file or `--set KEY=VALUE` that gave it (or its table), otherwise
     /// `scene SOURCE`. Errors found after parsing (validation, an unknown model, a solver
     /// refusing a value) are attributed with it.
     pub fn origin_of(&self, key: &str) -> String {
+        if let Some(given) = self.given.get(key) {
+            return given.origin.clone();
+        }
         let set_by = |prefix: &str| {
             key == prefix
                 || key

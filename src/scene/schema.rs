@@ -8,7 +8,7 @@
 //! its use.
 
 use super::declare::{scene_enum, scene_schema};
-use super::keys::{Alias, KeyError, Schema, Unit};
+use super::keys::{Alias, Schema, Unit};
 use super::kinds::{
     AutoOrNumber, ChoiceList, Count, Flag, Float, FloatList, ModelName, Scalar, Table, Text,
     number_or_auto, one_of,
@@ -34,6 +34,23 @@ pub const MAX_ELEMENTS: usize = 120_000;
 /// `wrinkle bench` measured 1e-4 … 1e-9 at the same accuracy.
 pub const MAX_SERIES_TOLERANCE: f64 = 1e-4;
 
+/// Shortest and longest side accepted (mm): a nanometre to a thousand kilometres. Lengths enter
+/// the stiffness squared and to the fourth power (the bending of a wave over an element); inside
+/// this window neither overflows nor underflows.
+pub const LENGTH_RANGE: (f64, f64) = (1e-6, 1e9);
+
+/// Largest ratio of the longer to the shorter side of any element, grading included: the
+/// eigen-solver's work grows with it (`mesh.nx = 100000, mesh.ny = 1` made elements 50 000
+/// times longer than wide and never finished its wavenumber search), and a Q8 element that
+/// stretched approximates nothing.
+pub const MAX_ELEMENT_ASPECT_RATIO: f64 = 50.0;
+
+/// Largest `solver.max_steps`: each step costs at least one factorisation.
+pub const MAX_STEPS: usize = 10_000;
+
+/// Largest number of `output.vtu_loads` (each writes a file of the whole mesh).
+pub const MAX_VTU_LOADS: usize = 100;
+
 /// The validity checks a scene may accept (`validity.accept`), as reported in `check` of each
 /// warning (docs/outputs.md); `"all"` accepts every one.
 pub const VALIDITY_CHECKS: &[&str] = &[
@@ -47,20 +64,28 @@ scene_schema! {
     /// The rectangle $`[0, L_X] \times [0, L_Y]`$ (mm).
     [geometry] Geometry {
         /// length $`L_X`$ along X
-        lx => length_x: f64 = 400.0, Float::above(0.0), Unit::MM;
+        lx => length_x: f64 = 400.0,
+            Float::at_least(LENGTH_RANGE.0).at_most(LENGTH_RANGE.1), Unit::MM;
         /// width $`L_Y`$ along Y
-        ly => length_y: f64 = 200.0, Float::above(0.0), Unit::MM;
+        ly => length_y: f64 = 200.0,
+            Float::at_least(LENGTH_RANGE.0).at_most(LENGTH_RANGE.1), Unit::MM;
     }
 
     /// Isotropic linear elastic sheet.
     [material] Material {
         /// Young's modulus $`E`$
-        young => young_modulus: f64 = 70000.0, Float::above(0.0), Unit::MPA;
+        young => young_modulus: f64 = 70000.0, Float::above(0.0), Unit::MPA,
+            note "and the stiffnesses $`Eh/(1-\\nu^2)`$ and $`Eh^3/(12(1-\\nu^2))`$ within 1e-60 … 1e60, \
+                  the tension strain $`N_Y/(Eh)`$ at most 1";
         /// Poisson's ratio $`\nu`$
         poisson => poisson_ratio: f64 = 0.3,
-            Float::above(-1.0).below(0.5).named("ν"), Unit::NONE;
+            Float::at_least(-0.99).below(0.5).named("ν").because(
+                "ν → −1 makes the in-plane problem singular"
+            ),
+            Unit::NONE;
         /// thickness $`h`$
-        thickness => thickness: f64 = 0.05, Float::above(0.0), Unit::MM;
+        thickness => thickness: f64 = 0.05, Float::above(0.0), Unit::MM,
+            note "and $`10^{-9} \\le h/\\min(L_X, L_Y) \\le 1`$";
     }
 
     /// Which model to solve, and its free parameters.
@@ -74,7 +99,8 @@ scene_schema! {
         /// selection) and `complex-envelope` (a free phase) take the reference envelope's
         /// minimiser and say so; a plate has no wavenumber and ignores the key (with a note)
         wavenumber => wavenumber: Wavenumber = Wavenumber::Auto,
-            number_or_auto::<Wavenumber>(Float::above(0.0)), Unit::PER_MM;
+            number_or_auto::<Wavenumber>(Float::above(0.0)), Unit::PER_MM,
+            note "a wavelength $`2\\pi/Q`$ from $`h`$ to $`10^6\\max(L_X, L_Y)`$";
         /// the model whose minimisation of $`\lambda_c(Q)`$ gives the wavenumber $`Q`$ to models
         /// that do not select their own (a complex envelope, the pure membrane) or whose
         /// $`\lambda_c(Q)`$ has no minimum in the search range, and the shift guess of a
@@ -85,7 +111,8 @@ scene_schema! {
         wavenumber_model => wavenumber_model: String = REFERENCE_MODEL.to_string(),
             ModelName, Unit::NONE;
         /// angle of the wave vector from the X axis (example 2 uses 90)
-        direction => direction_degrees: f64 = 0.0, Float::finite(), Unit::DEGREES_FROM_X;
+        direction => direction_degrees: f64 = 0.0,
+            Float::at_least(-360.0).at_most(360.0), Unit::DEGREES_FROM_X;
         /// model parameters by name, the table `[model.parameters]` (below)
         parameters => parameters: BTreeMap<String, f64> = BTreeMap::new(),
             Table::of(Float::finite(), "model parameters"), Unit::NONE;
@@ -96,12 +123,14 @@ scene_schema! {
         /// elements along X
         nx => elements_x: usize = 32,
             Count::between(1, MAX_ELEMENTS_PER_SIDE), Unit::NONE,
-            note "and nx·ny ≤ 120000 (about the largest mesh that fits in 24 GiB)";
+            note "and nx·ny ≤ 120000 (about the largest mesh that fits in 24 GiB), every element \
+                  at most 50 times longer than wide (grading included)";
         /// elements along Y
         ny => elements_y: usize = 16, Count::between(1, MAX_ELEMENTS_PER_SIDE), Unit::NONE;
         /// ratio of the largest to the smallest element size; the smallest elements are at the
         /// edges (clamped-edge layers are thin)
-        grading => grading: f64 = 1.0, Float::at_least(1.0), Unit::NONE;
+        grading => grading: f64 = 1.0, Float::at_least(1.0).at_most(MAX_ELEMENT_ASPECT_RATIO),
+            Unit::NONE;
     }
 
     /// Loading.
@@ -111,7 +140,8 @@ scene_schema! {
         /// sides clamped, $`\lambda`$ = prescribed end displacement
         kind => kind: LoadKind = LoadKind::Biaxial, one_of::<LoadKind>(), Unit::NONE;
         /// tension $`N_Y`$ (biaxial only; ignored by the strip)
-        tension_y => tension_y: f64 = 10.0, Float::at_least(0.0), Unit::N_PER_MM;
+        tension_y => tension_y: f64 = 10.0, Float::at_least(0.0), Unit::N_PER_MM,
+            note "and the tension strain $`N_Y/(Eh)`$ at most 1";
     }
 
     /// Settings of the path following used by `wrinkle run`.
@@ -120,14 +150,20 @@ scene_schema! {
         order => order: usize = 20, Count::between(2, 40), Unit::NONE;
         /// $`\varepsilon`$ in the step length $`a_{max} = (\varepsilon\|U_1\|/\|U_N\|)^{1/(N-1)}`$
         series_tolerance => series_tolerance: f64 = 1e-7,
-            Float::above(0.0).at_most(MAX_SERIES_TOLERANCE).because(
-                "a looser series lets a step run past the validity of its truncation"
+            Float::at_least(1e-14).at_most(MAX_SERIES_TOLERANCE).because(
+                "a looser series lets a step run past the validity of its truncation; a tighter \
+                 one than round-off only shortens the steps"
             ),
             Unit::NONE;
         /// relative residual accepted at every point (Newton correction beyond it)
-        tolerance => tolerance: f64 = 1e-6, Float::above(0.0), Unit::NONE;
+        tolerance => tolerance: f64 = 1e-6,
+            Float::at_least(1e-15).at_most(1e-2).because(
+                "a looser residual is not an equilibrium; a tighter one than 1e-15 no double \
+                 precision solution reaches"
+            ),
+            Unit::NONE;
         /// maximum number of steps
-        max_steps => max_steps: usize = 200, Count::at_least(1), Unit::NONE;
+        max_steps => max_steps: usize = 200, Count::between(1, MAX_STEPS), Unit::NONE;
         /// stop at this load $`\lambda`$ (the ANM evaluates its series there; Riks' first step
         /// end past it is moved back onto it by arc-length corrections); `0` = no limit
         max_load => max_load: f64 = 0.0, Float::at_least(0.0), Unit::LOAD;
@@ -137,14 +173,22 @@ scene_schema! {
         /// is moved back onto it by arc-length corrections, so that the last point lies within
         /// $`10^{-3}`$ relative above it
         max_amplitude_over_h => max_amplitude_over_thickness: f64 = 4.0,
-            Float::above(0.0), Unit::NONE;
+            Float::above(0.0).at_most(100.0).because(
+                "the models hold for moderate rotations, a few thicknesses of deflection"
+            ),
+            Unit::NONE, note "and above 2 × `perturbation`";
         /// size of the imperfection that selects the wrinkled branch (shape: `imperfection`),
         /// in thicknesses of the physical amplitude it gives on the unloaded sheet. `0`: the
         /// perfect problem, whose path stays flat on the fundamental branch past the
         /// bifurcation (unstable there) and never wrinkles: without `max_load` the run stops at
         /// its first point past $`\lambda_c`$ and says so (exit 3, `outcome_reason`); with
         /// `max_load` it follows that branch to the load asked
-        perturbation => perturbation: f64 = 1e-4, Float::at_least(0.0), Unit::NONE;
+        perturbation => perturbation: f64 = 1e-4,
+            Float::at_least(0.0).at_most(1.0).because(
+                "an imperfection of more than a thickness is a wrinkled sheet, not a perturbation"
+            ),
+            Unit::NONE,
+            note "either 0 or at least 1e-12 (smaller is the perfect problem to round-off)";
         /// `"uniform"`: the paper's uniform transverse load on the envelope,
         /// $`f = \text{perturbation}\cdot h\,DQ^4`$ (envelope models only); `"mode"`: a load
         /// shaped like the first buckling mode, $`F = \varepsilon K_0\varphi`$ ($`K_0`$ the
@@ -177,7 +221,8 @@ scene_schema! {
         directory => directory: String = "out".to_string(), Text, Unit::NONE;
         /// loads $`\lambda`$ at which the fields are written as VTU
         vtu_loads => vtu_loads: Vec<f64> = Vec::new(),
-            FloatList::of(Float::finite()), Unit::LOAD;
+            FloatList::of(Float::finite()), Unit::LOAD,
+            note "at most 100 loads, no two equal";
         /// draw plots (PNG and SVG, embedded in `report.html`)
         plots => plots: bool = true, Flag, Unit::NONE;
         /// write the nodal fields (`fields_final.vtu`, `fields_load_L.vtu`) with the stress
@@ -196,18 +241,57 @@ scene_schema! {
     }
 }
 
-/// Older spellings of keys, still read.
-static ALIASES: &[Alias] = &[Alias {
-    key: "solver.max_envelope_over_h",
-    target: "solver.max_amplitude_over_h",
-    meaning: "the older key: sets `max_amplitude_over_h` to twice its value (the physical \
-              amplitude of an envelope model is $`2|w_\\text{env}|`$)",
-    convert: |value| {
-        Float::finite()
-            .read(value)
-            .map(|half| Value::Float(2.0 * half))
+/// Other spellings of keys, still read: the older `solver.max_envelope_over_h`, and the standard
+/// model parameters of `[model.parameters]`, each the key it is filled from (so that it is
+/// validated, stored and echoed as that key, and every use of the value — the closed forms,
+/// the imperfection, $`\max|w|/h`$ — sees the same number as the model).
+static ALIASES: &[Alias] = &[
+    Alias {
+        key: "solver.max_envelope_over_h",
+        target: "solver.max_amplitude_over_h",
+        meaning: "the older key: sets `max_amplitude_over_h` to twice its value (the physical \
+                  amplitude of an envelope model is $`2|w_\\text{env}|`$)",
+        convert: |value| number(value).map(|half| Value::Float(2.0 * half)),
     },
-}];
+    Alias {
+        key: "model.parameters.young",
+        target: "material.young",
+        meaning: "the model parameter `young`: another spelling of `material.young`",
+        convert: |value| number(value).map(Value::Float),
+    },
+    Alias {
+        key: "model.parameters.poisson",
+        target: "material.poisson",
+        meaning: "the model parameter `poisson`: another spelling of `material.poisson`",
+        convert: |value| number(value).map(Value::Float),
+    },
+    Alias {
+        key: "model.parameters.thickness",
+        target: "material.thickness",
+        meaning: "the model parameter `thickness`: another spelling of `material.thickness`",
+        convert: |value| number(value).map(Value::Float),
+    },
+    Alias {
+        key: "model.parameters.wavenumber",
+        target: "model.wavenumber",
+        meaning: "the model parameter `wavenumber`: another spelling of a fixed \
+                  `model.wavenumber`",
+        convert: |value| number(value).map(Value::Float),
+    },
+    Alias {
+        key: "model.parameters.direction",
+        target: "model.direction",
+        meaning: "the model parameter `direction`, in radians: sets `model.direction` to its value \
+                  in degrees",
+        convert: |value| number(value).map(|radians| Value::Float(radians.to_degrees())),
+    },
+];
+
+/// A finite number (an integer is taken as a float), for the conversions of [`ALIASES`].
+fn number(value: &Value) -> Result<f64, String> {
+    let number = Float::finite().read(value)?;
+    Float::finite().within_bounds(&number).map(|()| number)
+}
 
 /// The scene schema: the tables, the keys of [`KEYS`] and the aliases.
 pub(super) static SCHEMA: Schema<Scene> = Schema {
@@ -215,21 +299,6 @@ pub(super) static SCHEMA: Schema<Scene> = Schema {
     keys: KEY_SPECS,
     aliases: ALIASES,
 };
-
-/// The checks that involve more than one key (each declaration checks its own key).
-pub(super) fn check_across_keys(scene: &Scene) -> Result<(), KeyError> {
-    let (elements_x, elements_y) = (scene.mesh.elements_x, scene.mesh.elements_y);
-    let elements = elements_x.saturating_mul(elements_y);
-    if elements > MAX_ELEMENTS {
-        return Err(KeyError::new(
-            "mesh.nx",
-            format!(
-                "mesh.nx × mesh.ny = {elements_x} × {elements_y} = {elements} elements is more than the {MAX_ELEMENTS} this tool solves in 24 GiB"
-            ),
-        ));
-    }
-    Ok(())
-}
 
 /// Wavenumber $`Q`$ of the wrinkles.
 #[derive(Clone, Copy, Debug, PartialEq)]

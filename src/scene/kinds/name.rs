@@ -60,6 +60,8 @@ impl Scalar for Text {
     fn within_bounds(&self, value: &String) -> Result<(), String> {
         if value.trim().is_empty() {
             Err("must not be empty".to_string())
+        } else if value.contains('\0') {
+            Err("must not contain a NUL character".to_string())
         } else {
             Ok(())
         }
@@ -74,7 +76,7 @@ impl Scalar for Text {
     }
 
     fn bounds_text(&self) -> String {
-        "non-empty".to_string()
+        "non-empty, no NUL character".to_string()
     }
 }
 

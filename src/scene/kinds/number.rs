@@ -96,7 +96,15 @@ impl Float {
     /// The condition, e.g. `> 0`, `-1 < ν < 0.5`, `> 0 and at most 0.0001`; empty when the
     /// number need only be finite.
     pub(super) fn condition(&self) -> String {
-        let number = |value: f64| short_number(value);
+        // Bounds far from 1 read better as powers of ten (`1e-6`, not `0.000001`).
+        let number = |value: f64| {
+            let magnitude = value.abs();
+            if magnitude >= 1e6 || (magnitude > 0.0 && magnitude < 1e-4) {
+                format!("{value:e}")
+            } else {
+                short_number(value)
+            }
+        };
         if !self.symbol.is_empty() {
             let lower = match self.lower {
                 Bound::Open(minimum) => format!("{} < ", number(minimum)),
@@ -191,23 +199,11 @@ impl Count {
         Count { minimum, maximum }
     }
 
-    /// An integer $`\ge \text{minimum}`$.
-    pub const fn at_least(minimum: usize) -> Self {
-        Count {
-            minimum,
-            maximum: usize::MAX,
-        }
-    }
-
     fn out_of_range(&self, got: impl std::fmt::Display) -> String {
-        if self.maximum == usize::MAX {
-            format!("must be an integer ≥ {}, got {got}", self.minimum)
-        } else {
-            format!(
-                "must be an integer between {} and {}, got {got}",
-                self.minimum, self.maximum
-            )
-        }
+        format!(
+            "must be an integer between {} and {}, got {got}",
+            self.minimum, self.maximum
+        )
     }
 }
 
@@ -241,11 +237,7 @@ impl Scalar for Count {
     }
 
     fn bounds_text(&self) -> String {
-        if self.maximum == usize::MAX {
-            format!("integer ≥ {}", self.minimum)
-        } else {
-            format!("integer {} … {}", self.minimum, self.maximum)
-        }
+        format!("integer {} … {}", self.minimum, self.maximum)
     }
 }
 
@@ -351,8 +343,8 @@ mod tests {
             "must be an integer between 2 and 40, got 41"
         );
         assert_eq!(
-            Count::at_least(1).within_bounds(&0).unwrap_err(),
-            "must be an integer ≥ 1, got 0"
+            Count::between(1, 10).within_bounds(&0).unwrap_err(),
+            "must be an integer between 1 and 10, got 0"
         );
         assert_eq!(
             count.read(&Value::Float(2.5)).unwrap_err(),
