@@ -11,8 +11,9 @@
 //! ```
 //!
 //! Runs written before the pipeline report the *envelope*; the physical amplitude is twice it
-//! (THEORY §3), and this driver doubles it. The output directory is a [`RunDirectory`]: its
-//! previous rendering is removed first, and its `summary.json` lists the files written.
+//! (THEORY §3), and this driver doubles it. The output directory is a [`RunDirectory`]: locked
+//! while rendering, written beside itself and swapped in whole (replacing its previous
+//! rendering), and its `summary.json` lists the files written.
 
 use std::error::Error;
 use std::f64::consts::PI;
@@ -48,7 +49,7 @@ fn main() -> Result<()> {
     )?;
     let output = output.unwrap_or_else(|| run_directory.join("rendered"));
     let run = RunData::load(&run_directory)?;
-    let mut directory = RunDirectory::prepare(&output)?;
+    let mut directory = RunDirectory::open(&output)?;
     let mut figures = Vec::new();
 
     let response = run.response();
@@ -148,6 +149,7 @@ fn main() -> Result<()> {
         "rendered_from": run_directory.display().to_string(),
         "summary_rows": format_rows(&summary.rows()),
     }))?;
+    directory.commit()?;
     println!("rendered into {}", output.display());
     Ok(())
 }

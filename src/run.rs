@@ -12,7 +12,7 @@
 //! result from it, and [`crate::run_outputs`] writes them.
 
 use crate::error::Error;
-use crate::output::{PathPoint, Progress, ProgressSink, ProgressTarget, Quantity};
+use crate::output::{PathPoint, Progress, ProgressSink, ProgressTarget, Quantity, RunDirectory};
 use crate::physics::{Layout, Snapshot};
 pub use crate::results::{RunContext, RunOutcome, RunReport, RunSummary, Snap, Trace};
 use crate::scene::{Imperfection, LoadKind, PathMethod, Scene, Wavenumber};
@@ -51,6 +51,10 @@ pub fn run(scene: &Scene, output_directory: &Path, quiet: bool) -> Result<RunRep
 /// `--threshold FILE`), a wavenumber model shared with other runs
 /// ([`ThresholdOptions::wavenumber_model`], `wrinkle compare`). `options.quiet` silences the
 /// path's progress too.
+///
+/// The output directory is locked and checked first ([`RunDirectory::open`]): a second run
+/// into it fails at once, before any work; the outputs are written beside it and swapped in
+/// whole at the end, so that a run that fails or is killed leaves the previous run in place.
 pub fn run_with(
     scene: &Scene,
     output_directory: &Path,
@@ -58,15 +62,32 @@ pub fn run_with(
 ) -> Result<RunReport, Error> {
     let visitor = RunVisitor {
         scene,
-        directory: output_directory,
+        directory: open_run_directory(output_directory)?,
+        given: output_directory,
         options,
     };
     with_model(&scene.model.name, visitor).unwrap_or_else(|| Err(unknown_model(scene)))
 }
 
+/// [`RunDirectory::open`], its refusals (a run already writing there, a directory that cannot
+/// be replaced) as usage errors (exit 2) naming the directory.
+fn open_run_directory(directory: &Path) -> Result<RunDirectory, Error> {
+    RunDirectory::open(directory).map_err(|error| match error.kind() {
+        std::io::ErrorKind::WouldBlock | std::io::ErrorKind::InvalidInput => Error::Usage(format!(
+            "output directory `{}`: {error}",
+            directory.display()
+        )),
+        _ => Error::Io {
+            path: directory.display().to_string(),
+            error,
+        },
+    })
+}
+
 struct RunVisitor<'a> {
     scene: &'a Scene,
-    directory: &'a Path,
+    directory: RunDirectory,
+    given: &'a Path,
     options: &'a ThresholdOptions<'a>,
 }
 
@@ -104,8 +125,13 @@ impl ModelVisitor for RunVisitor<'_> {
                 .then(crate::memory::peak_resident_bytes)
                 .flatten(),
         };
-        let summary = RunSummary::new(&context, &trace);
-        crate::run_outputs::write_run(&context, &trace, summary, self.directory)
+        let mut summary = RunSummary::new(&context, &trace);
+        summary
+            .notices
+            .extend(self.directory.notes().iter().map(|note| {
+                crate::output::Warning::new(crate::output::Severity::Note, "output directory", note)
+            }));
+        crate::run_outputs::write_run(&context, &trace, summary, self.directory, self.given)
     }
 }
 

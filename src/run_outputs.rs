@@ -1,6 +1,7 @@
 //! The files of a run (documented in `docs/outputs.md`): `path.csv`, `fields_*.vtu`,
 //! `surface_final.vtu`, the plots, `report.html`, `scene.toml`, and `summary.json` last with the
-//! list of every file written. Nothing here decides or recomputes a result: the numbers come
+//! list of every file written — all into the staging directory of a [`RunDirectory`], swapped
+//! in whole once complete. Nothing here decides or recomputes a result: the numbers come
 //! from the [`RunSummary`] (decided before anything is written) and the states from the
 //! [`Trace`]; the physical deflection is read through the field roles ([`crate::physics::Snapshot`]).
 
@@ -33,17 +34,19 @@ fn samples(context: &RunContext, length: f64) -> usize {
     (12.0 * length / wavelength).clamp(50.0, 1500.0) as usize
 }
 
-/// Writes every output of a run into `directory` (the previous run's files are removed first):
-/// the result `summary` of `context` and `trace`, serialised.
+/// Writes every output of a run — the result `summary` of `context` and `trace`, serialised —
+/// into the staging directory of `run_directory`, then swaps it in whole
+/// ([`RunDirectory::commit`]); `given` is the directory as the user named it (the paths of
+/// [`RunReport::files`] are in it).
 pub fn write_run(
     context: &RunContext,
     trace: &Trace,
     summary: RunSummary,
-    directory: &Path,
+    mut run_directory: RunDirectory,
+    given: &Path,
 ) -> Result<RunReport, Error> {
-    let mut run_directory = RunDirectory::prepare(directory).map_err(io_error(directory))?;
-    let dir = run_directory.root().to_path_buf();
-    let mut files = Vec::new();
+    let dir = run_directory.staging().to_path_buf();
+    let mut files: Vec<PathBuf> = Vec::new();
     let csv = dir.join("path.csv");
     write_path_csv(&csv, &summary.path).map_err(io_error(&csv))?;
     files.push(csv);
@@ -80,11 +83,15 @@ pub fn write_run(
     report.scene_toml = context.scene.to_toml_string();
     report.files = run_directory.files().to_vec();
     crate::output::write_report(&report_path, &report).map_err(io_error(&report_path))?;
-    files.push(report_path);
-    let summary_path = run_directory
+    run_directory
         .write_summary(&summary)
         .map_err(io_error(&dir))?;
-    files.push(summary_path);
+    let files = run_directory
+        .files()
+        .iter()
+        .map(|name| given.join(name))
+        .collect();
+    run_directory.commit().map_err(io_error(given))?;
     let summary_text = summary_text(&table, &summary);
     Ok(RunReport {
         summary,

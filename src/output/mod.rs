@@ -8,8 +8,9 @@
 //! same writers serve every model and load (the biaxial load in N/mm, the strip's end
 //! displacement in mm).
 //!
-//! Every file is written atomically ([`files::write_atomically`]); [`RunDirectory`] removes the
-//! previous run's files before writing and lists the files written for `summary.json`.
+//! Every file is written atomically ([`files::write_atomically`]); a run's files are written into
+//! the staging directory of a [`RunDirectory`] (locked: one run at a time), listed in its
+//! `summary.json` and swapped in whole at the end.
 //!
 //! All writers return [`std::io::Result`]. Input that cannot be written (mismatched lengths,
 //! non-finite bounds, empty grids, …) is reported as an [`std::io::Error`] of kind
@@ -17,7 +18,8 @@
 //! either print it as one line or downcast it.
 //!
 //! * [`quantity`] — [`Quantity`]: description, symbol, unit.
-//! * [`files`] — [`write_atomically`], [`RunDirectory`].
+//! * [`files`] — [`write_atomically`] and the names of a run's files.
+//! * [`run_directory`] — [`RunDirectory`]: the lock, the staging directory, the swap.
 //! * [`path_table`] — [`PathPoint`] and [`write_path_csv`].
 //! * [`grid`] — [`GridField`]: a field sampled on a regular grid.
 //! * [`vtu`] — [`write_fields_vtu`] (Q8 mesh, VTK cell type 23) and [`write_surface_vtu`], both
@@ -36,8 +38,8 @@
 //! };
 //! # fn main() -> std::io::Result<()> {
 //! # let out = std::env::temp_dir().join(format!("wrinkle-doc-{}", std::process::id()));
-//! // Removes the previous run's files (only those it listed), keeps everything else.
-//! let mut directory = RunDirectory::prepare(&out)?;
+//! // Locks the directory (a second run into it fails at once); the outputs go beside it.
+//! let mut directory = RunDirectory::open(&out)?;
 //! // Physical amplitudes (twice the envelope for envelope models), loads in N/mm.
 //! let load = Quantity::biaxial_load();
 //! let critical = 0.0895;
@@ -86,9 +88,13 @@
 //! directory.record([&report_path])?;
 //! report.files = directory.files().to_vec();
 //! write_report(&report_path, &report)?;
-//! // Last: summary.json with `files`, the list of everything written.
+//! // Last: summary.json with `files`, the list of everything written; then the swap, which
+//! // replaces the previous run's files (only those it listed) and keeps everything else.
 //! directory.write_summary(&serde_json::json!({ "model": "reference-envelope" }))?;
+//! let out = directory.commit()?;
 //! # std::fs::remove_dir_all(&out)?;
+//! # let lock = format!(".{}.wrinkle-lock", out.file_name().unwrap().to_string_lossy());
+//! # std::fs::remove_file(out.with_file_name(lock))?;
 //! # Ok(())
 //! # }
 //! ```
@@ -100,11 +106,10 @@ pub mod plots;
 pub mod progress;
 pub mod quantity;
 pub mod report;
+pub mod run_directory;
 pub mod vtu;
 
-pub use files::{
-    RunDirectory, write_atomically, write_atomically_via_path, write_bytes_atomically, write_json,
-};
+pub use files::{write_atomically, write_atomically_via_path, write_bytes_atomically, write_json};
 pub use grid::GridField;
 pub use path_table::{PATH_CSV_COLUMNS, PathPoint, write_path_csv, write_path_csv_to};
 pub use plots::{
@@ -117,6 +122,7 @@ pub use quantity::Quantity;
 pub use report::{
     Report, ReportFigure, Severity, SummaryRow, SummaryTable, Warning, format_rows, write_report,
 };
+pub use run_directory::RunDirectory;
 pub use vtu::{
     FieldData, FieldValue, PointArray, write_fields_vtu, write_fields_vtu_with_cells,
     write_surface_vtu,
