@@ -126,13 +126,9 @@ pub fn bench(
     } else {
         models.to_vec()
     };
-    let known = wrinkle_models::names();
-    if let Some(unknown) = models.iter().find(|m| !known.contains(&m.as_str())) {
-        return Err(Error::Usage(format!(
-            "unknown model `{unknown}` (models: {})",
-            known.join(", ")
-        )));
-    }
+    crate::study::check_model_list(&models)?;
+    let _lock = crate::output::DirectoryLock::inside(directory)
+        .map_err(crate::error::output_directory_error(directory))?;
     let closed_form = closed_form_threshold(scene).map(|(load, _)| load);
     let total: usize = models
         .iter()
@@ -266,7 +262,7 @@ fn run_point(
     );
     progress.done += 1;
     let label = format!("bench [{}/{}] {model}", progress.done, progress.total);
-    eprintln!(
+    crate::output::message_line(&format!(
         "{label} {} {}: {}×{}, N = {}, ε = {:.0e}{}",
         sweep.as_str(),
         settings.method.label(),
@@ -275,7 +271,7 @@ fn run_point(
         settings.order,
         settings.series_tolerance,
         wavenumber.map_or(String::new(), |q| format!(", Q = {q:.6} fixed")),
-    );
+    ));
     let begin = Instant::now();
     let mut row = BenchRow {
         model: model.to_string(),
@@ -306,14 +302,14 @@ fn run_point(
         Err(error @ Error::Scene { .. }) => return Err(error),
         Err(error) => row.reason = Some(error.to_string()),
     }
-    eprintln!(
+    crate::output::message_line(&format!(
         "{label}: {} in {:.1} s",
         match &row.reason {
             Some(reason) => format!("{}: {reason}", row.outcome),
             None => row.outcome.clone(),
         },
         begin.elapsed().as_secs_f64()
-    );
+    ));
     Ok(row)
 }
 

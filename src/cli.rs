@@ -7,6 +7,7 @@ use crate::analytic;
 use crate::closed_form;
 use crate::commands;
 use crate::error::Error;
+use crate::output::message_line;
 use crate::scene::{LoadKind, Scene};
 use crate::threshold::ThresholdSummary;
 use clap::{Args, Parser, Subcommand};
@@ -158,8 +159,13 @@ where
     let cli = match Cli::try_parse_from(arguments) {
         Ok(cli) => cli,
         Err(error) => {
-            let _ = error.print();
-            return if error.use_stderr() { 2 } else { 0 };
+            let printed = error.print();
+            return match printed {
+                _ if error.use_stderr() => 2,
+                // `--help` or `--version` that cannot be written (a full disk): not a success.
+                Err(failure) if failure.kind() != std::io::ErrorKind::BrokenPipe => 1,
+                _ => 0,
+            };
         }
     };
     if let Some(threads) = cli.threads {
@@ -172,7 +178,7 @@ where
     match execute(&cli.command) {
         Ok(()) => 0,
         Err(error) => {
-            eprintln!("error: {error}");
+            message_line(&format!("error: {error}"));
             error.exit_code()
         }
     }
@@ -204,7 +210,7 @@ pub fn execute(command: &Command) -> Result<(), Error> {
             let scene = scene.resolve()?;
             let bench = crate::bench::bench(&scene, models, *quick, out)?;
             print_stdout(&crate::bench::bench_table(&bench))?;
-            eprintln!("benchmark in {}", out.display());
+            message_line(&format!("benchmark in {}", out.display()));
             Ok(())
         }
         Command::Analytic {
@@ -251,13 +257,15 @@ fn run(
     let directory = PathBuf::from(&scene.output.directory);
     crate::interrupt::install();
     let report = commands::run(&scene, &directory, quiet, prior.as_ref())?;
-    // The summary table goes to stdout whatever the outcome (a closed stdout is not an error).
-    let _ = print_stdout(&report.summary_text);
+    // The summary table goes to stdout whatever the outcome. A closed pipe is not an error; a
+    // stdout that cannot be written (a full disk) is, after the run's own failure if it has one.
+    let printed = print_stdout(&report.summary_text);
     let written = format!("(outputs written to {})", directory.display());
     if let Some(error) = report.summary.outcome.error(&written) {
         return Err(error);
     }
-    eprintln!("outputs in {}", directory.display());
+    printed?;
+    message_line(&format!("outputs in {}", directory.display()));
     Ok(())
 }
 
@@ -285,7 +293,7 @@ fn compare(
         &comparison,
         crate::threshold::load_unit(scene),
     ))?;
-    eprintln!("comparison in {}", directory.display());
+    message_line(&format!("comparison in {}", directory.display()));
     Ok(())
 }
 

@@ -6,15 +6,20 @@
 //! loads at given physical amplitudes next to each other. A model that fails does not stop the
 //! others: its row says why. `MODEL:KEY=VALUE` overrides apply to one model only (a plate
 //! needs a mesh that resolves its wrinkles; an envelope model does not).
+//!
+//! The whole command line is checked before any model runs — the model list (no empty, unknown
+//! or repeated entry), every override, every model's scene — and `OUT` is locked
+//! ([`DirectoryLock`]): a second comparison into it fails at once.
 
-use crate::error::{Error, io_error};
+use crate::error::{Error, io_error, output_directory_error};
 use crate::output::{
-    Quantity, Response, ResponsePoint, plot_comparison, write_bytes_atomically, write_json,
+    DirectoryLock, Quantity, Response, ResponsePoint, plot_comparison, write_bytes_atomically,
+    write_json,
 };
 use crate::results::{RunSummary, load_quantity};
 use crate::run::run_with;
 use crate::scene::Scene;
-use crate::study::{load_at_amplitude, number_cell};
+use crate::study::{check_model_list, load_at_amplitude, number_cell};
 use crate::threshold::{ThresholdOptions, WavenumberModel, closed_form_threshold};
 use serde_json::json;
 use std::path::Path;
@@ -106,7 +111,8 @@ pub fn compare(
     directory: &Path,
     quiet: bool,
 ) -> Result<Comparison, Error> {
-    let overrides = parse_model_overrides(models, model_overrides)?;
+    let scenes = model_scenes(scene, models, model_overrides)?;
+    let _lock = DirectoryLock::inside(directory).map_err(output_directory_error(directory))?;
     let load = load_quantity(scene);
     // One wavenumber model for every model that needs it: its threshold is computed once.
     let wavenumber_model = WavenumberModel::for_scene(scene)?;
@@ -117,17 +123,9 @@ pub fn compare(
     };
     let mut rows = Vec::new();
     let mut responses = Vec::new();
-    for model in models {
-        let mut one = scene.clone();
-        one.model.name = model.clone();
-        for (name, assignment) in &overrides {
-            if name == model {
-                one.apply_override(assignment)?;
-            }
-        }
-        one.validate()?;
+    for (model, one) in models.iter().zip(&scenes) {
         let out = directory.join(model);
-        match run_with(&one, &out, &options) {
+        match run_with(one, &out, &options) {
             Ok(report) => {
                 rows.push(row_of(model, &report.summary));
                 responses.extend(response_of(model, &report.summary, &load));
@@ -157,6 +155,32 @@ pub fn compare(
     };
     write_comparison(scene, &comparison, &responses, directory)?;
     Ok(comparison)
+}
+
+/// The scene of each of `models` — `scene` with its model and its `MODEL:KEY=VALUE`
+/// overrides — every one checked before any of them runs, as is the list itself
+/// ([`check_model_list`]).
+fn model_scenes(
+    scene: &Scene,
+    models: &[String],
+    model_overrides: &[String],
+) -> Result<Vec<Scene>, Error> {
+    check_model_list(models)?;
+    let overrides = parse_model_overrides(models, model_overrides)?;
+    models
+        .iter()
+        .map(|model| {
+            let mut one = scene.clone();
+            one.model.name = model.clone();
+            for (name, assignment) in &overrides {
+                if name == model {
+                    one.apply_override(assignment)?;
+                }
+            }
+            one.validate()?;
+            Ok(one)
+        })
+        .collect()
 }
 
 /// Splits `MODEL:KEY=VALUE` overrides; the model must be one of `models`.

@@ -82,6 +82,24 @@ pub fn io_error(path: &Path) -> impl FnOnce(std::io::Error) -> Error + '_ {
     }
 }
 
+/// The error of locking or opening an output directory
+/// ([`crate::output::RunDirectory::open`], [`crate::output::DirectoryLock::inside`]): its
+/// refusals — another run holds it (kind `WouldBlock`), it cannot be used (kind
+/// `InvalidInput`: a file, a symbolic-link loop, the current directory, foreign files under the
+/// outputs' names) — are usage errors (exit 2) naming the directory; anything else is an
+/// [`Error::Io`].
+pub fn output_directory_error(directory: &Path) -> impl FnOnce(std::io::Error) -> Error + '_ {
+    move |error| match error.kind() {
+        std::io::ErrorKind::WouldBlock | std::io::ErrorKind::InvalidInput => {
+            Error::Usage(error.to_string())
+        }
+        _ => Error::Io {
+            path: directory.display().to_string(),
+            error,
+        },
+    }
+}
+
 impl fmt::Display for Error {
     fn fmt(&self, formatter: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {

@@ -16,11 +16,11 @@ static PATH_ACTIVE: AtomicBool = AtomicBool::new(false);
 pub fn install() {
     let _ = ctrlc::set_handler(|| {
         if PATH_ACTIVE.load(Ordering::SeqCst) && !REQUESTED.swap(true, Ordering::SeqCst) {
-            eprintln!(
-                "\ninterrupt: stopping after the current point and writing every completed point (Ctrl-C again to abort)"
+            crate::output::message_line(
+                "\ninterrupt: stopping after the current point and writing every completed point (Ctrl-C again to abort)",
             );
         } else {
-            eprintln!("\ninterrupted");
+            crate::output::message_line("\ninterrupted");
             std::process::exit(crate::error::EXIT_INTERRUPTED);
         }
     });

@@ -17,7 +17,8 @@
 //! * [`setup`] builds the problem of a scene, [`physics`] reads what the model's fields mean from
 //!   their roles, [`scene`] parses and validates scene files (TOML plus `--set KEY=VALUE`),
 //!   [`closed_form`] holds the independent analytic truths of the clamped rectangle
-//!   (THEORY.md §8); [`error`], [`interrupt`] and [`memory`] serve every layer.
+//!   (THEORY.md §8); [`error`], [`input`] (every file read with a size cap), [`interrupt`]
+//!   and [`memory`] serve every layer.
 
 pub mod analytic;
 pub mod bench;
@@ -26,6 +27,7 @@ pub mod closed_form;
 pub mod commands;
 pub mod compare;
 pub mod error;
+pub mod input;
 pub mod interrupt;
 pub mod memory;
 pub mod output;

@@ -16,7 +16,7 @@ pub use summary::{
 use crate::error::Error;
 use crate::output::{PathPoint, Quantity};
 use crate::physics::{Layout, Snapshot};
-use crate::scene::{LoadKind, Scene};
+use crate::scene::{Imperfection, LoadKind, Scene};
 use crate::threshold::Threshold;
 use std::path::PathBuf;
 use wrinkle_runtime::ModelSpec;
@@ -107,6 +107,15 @@ pub struct RunReport {
     pub summary_text: String,
 }
 
+/// The imperfection a run added to its fixed loads.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AppliedImperfection {
+    /// Physical amplitude (mm) of its response on the unloaded sheet.
+    pub amplitude: f64,
+    /// Its shape: [`Imperfection::Uniform`] or [`Imperfection::Mode`].
+    pub shape: Imperfection,
+}
+
 /// What the run knows besides its trace: the scene, the model and its problem, the threshold,
 /// the costs measured before the outputs.
 pub struct RunContext<'a> {
@@ -122,6 +131,9 @@ pub struct RunContext<'a> {
     pub threshold: &'a Threshold,
     /// Physical amplitude (mm) of the imperfection's response on the unloaded sheet.
     pub imperfection: f64,
+    /// The imperfection's shape as used: [`Imperfection::Uniform`] or [`Imperfection::Mode`]
+    /// (`solver.imperfection` resolved for the model).
+    pub imperfection_shape: Imperfection,
     /// Free unknowns.
     pub dofs: usize,
     /// Seconds before the outputs.

@@ -11,10 +11,12 @@
 //! `PathRecorder` keeps what the outputs need in a [`Trace`], [`RunSummary::new`] decides the
 //! result from it, and [`crate::run_outputs`] writes them.
 
-use crate::error::Error;
+use crate::error::{Error, output_directory_error};
 use crate::output::{PathPoint, Progress, ProgressSink, ProgressTarget, Quantity, RunDirectory};
 use crate::physics::{Layout, Snapshot};
-pub use crate::results::{RunContext, RunOutcome, RunReport, RunSummary, Snap, Trace};
+pub use crate::results::{
+    AppliedImperfection, RunContext, RunOutcome, RunReport, RunSummary, Snap, Trace,
+};
 use crate::scene::{Imperfection, LoadKind, PathMethod, Scene, Wavenumber};
 use crate::setup::{build_problem, configure_model, layout_of, unknown_model};
 use crate::threshold::{
@@ -62,26 +64,12 @@ pub fn run_with(
 ) -> Result<RunReport, Error> {
     let visitor = RunVisitor {
         scene,
-        directory: open_run_directory(output_directory)?,
+        directory: RunDirectory::open(output_directory)
+            .map_err(output_directory_error(output_directory))?,
         given: output_directory,
         options,
     };
     with_model(&scene.model.name, visitor).unwrap_or_else(|| Err(unknown_model(scene)))
-}
-
-/// [`RunDirectory::open`], its refusals (a run already writing there, a directory that cannot
-/// be replaced) as usage errors (exit 2) naming the directory.
-fn open_run_directory(directory: &Path) -> Result<RunDirectory, Error> {
-    RunDirectory::open(directory).map_err(|error| match error.kind() {
-        std::io::ErrorKind::WouldBlock | std::io::ErrorKind::InvalidInput => Error::Usage(format!(
-            "output directory `{}`: {error}",
-            directory.display()
-        )),
-        _ => Error::Io {
-            path: directory.display().to_string(),
-            error,
-        },
-    })
 }
 
 struct RunVisitor<'a> {
@@ -118,7 +106,8 @@ impl ModelVisitor for RunVisitor<'_> {
             layout: &layout,
             mesh: problem.assembler.mesh(),
             threshold: &threshold,
-            imperfection,
+            imperfection: imperfection.amplitude,
+            imperfection_shape: imperfection.shape,
             dofs: problem.free_count(),
             seconds: begin.elapsed().as_secs_f64(),
             peak_memory: peak_tracked
@@ -135,21 +124,43 @@ impl ModelVisitor for RunVisitor<'_> {
     }
 }
 
-/// Adds the mode-shaped imperfection to the fixed loads; returns $`\varepsilon`$ (mm).
+/// Adds the imperfection of `solver.imperfection` to the fixed loads: uniform (it needs the
+/// wavenumber of an envelope model) or mode-shaped — for `"auto"` uniform for envelope models,
+/// the mode for the others; a `"uniform"` asked of a model without a wavenumber (the plate)
+/// is the mode, and [`AppliedImperfection::shape`] says so.
 fn add_imperfection<M: EnergyModel>(
     scene: &Scene,
     problem: &mut Problem<M>,
     layout: &Layout,
     threshold: &Threshold,
-) -> Result<f64, Error> {
+) -> Result<AppliedImperfection, Error> {
     let uniform = match scene.solver.imperfection {
         Imperfection::Uniform => true,
         Imperfection::Mode => false,
         Imperfection::Auto => layout.is_envelope(),
     };
     if let (true, Some(q)) = (uniform, threshold.wavenumber) {
-        return add_uniform_imperfection(scene, problem, layout, q);
+        let amplitude = add_uniform_imperfection(scene, problem, layout, q)?;
+        return Ok(AppliedImperfection {
+            amplitude,
+            shape: Imperfection::Uniform,
+        });
     }
+    let amplitude = add_mode_imperfection(scene, problem, layout, threshold)?;
+    Ok(AppliedImperfection {
+        amplitude,
+        shape: Imperfection::Mode,
+    })
+}
+
+/// Adds the mode-shaped imperfection $`F = \varepsilon K_0\varphi`$ to the fixed loads;
+/// returns its physical amplitude on the unloaded sheet (mm).
+fn add_mode_imperfection<M: EnergyModel>(
+    scene: &Scene,
+    problem: &mut Problem<M>,
+    layout: &Layout,
+    threshold: &Threshold,
+) -> Result<f64, Error> {
     let mode = threshold.buckling.modes.first().ok_or_else(|| {
         Error::Solver("linear buckling returned no mode to shape the imperfection".into())
     })?;
@@ -234,6 +245,8 @@ struct PathRecorder<'a, M: EnergyModel> {
     closed_form: Option<(f64, f64)>,
     target: f64,
     vtu_requests: Vec<f64>,
+    /// Requested loads below the path's range, never recorded.
+    vtu_below_path: Vec<f64>,
     previous: Option<PathState>,
     progress: Progress,
     trace: Trace,
@@ -352,7 +365,9 @@ impl<M: EnergyModel> PathRecorder<'_, M> {
         };
         while let Some(&requested) = self.vtu_requests.first() {
             if requested < previous.load.min(state.load) {
-                self.vtu_requests.remove(0);
+                // Below the path (a load under its start): no state, and a note says so.
+                let below = self.vtu_requests.remove(0);
+                self.vtu_below_path.push(below);
                 continue;
             }
             if requested > state.load.max(previous.load) {
@@ -441,6 +456,7 @@ impl<'a, M: EnergyModel> PathRecorder<'a, M> {
             closed_form,
             target,
             vtu_requests,
+            vtu_below_path: Vec::new(),
             previous: None,
             progress,
             trace: Trace {
@@ -493,7 +509,8 @@ fn trace_path<M: EnergyModel>(
         .progress
         .finish(&format!("{stop} ({} steps)", result.statistics.steps));
     let mut trace = recorder.trace;
-    trace.unreached_vtu_loads = recorder.vtu_requests;
+    trace.unreached_vtu_loads = recorder.vtu_below_path;
+    trace.unreached_vtu_loads.extend(recorder.vtu_requests);
     if scene.output.vtu {
         for snap in trace.requested.iter_mut().chain([&mut trace.last]) {
             snap.stress_resultants = stress_resultants(problem, layout, &snap.values);

@@ -141,7 +141,10 @@ fn write_fields(context: &RunContext, trace: &Trace, dir: &Path) -> Result<Vec<P
     if context.scene.output.vtu {
         write_nodal(FINAL_FIELDS_FILE.into(), &trace.last)?;
         for snap in &trace.requested {
-            write_nodal(fields_file_at(snap.load), snap)?;
+            write_nodal(
+                fields_file_at(snap.load, &context.scene.output.vtu_loads),
+                snap,
+            )?;
         }
     }
     if !context.scene.output.surface {

@@ -1,8 +1,39 @@
 //! What `wrinkle compare` and `wrinkle bench` share: the loads and amplitudes read off a path
 //! at a crossing ([`value_at_crossing`], [`load_at_amplitude`], [`amplitude_at_load`]), relative
-//! errors ([`relative_error`]) and the number cells of their CSV files ([`number_cell`]).
+//! errors ([`relative_error`]), the number cells of their CSV files ([`number_cell`]), and the
+//! check of their `--models` list before any work ([`check_model_list`]).
 
+use crate::error::Error;
 use crate::output::PathPoint;
+
+/// Checks a `--models` list before any work: every entry names a registered model, none is
+/// empty (`--models a,` or `a,,b`) and none repeats (each model writes one directory). The
+/// error names the entry, counted from 1.
+pub fn check_model_list(models: &[String]) -> Result<(), Error> {
+    let known = wrinkle_models::names();
+    for (index, model) in models.iter().enumerate() {
+        let entry = format!("--models entry {} (`{model}`)", index + 1);
+        if model.trim().is_empty() {
+            return Err(Error::Usage(format!(
+                "{entry} is empty (a trailing or doubled comma?): give model names separated by commas, e.g. --models {}",
+                known.join(",")
+            )));
+        }
+        if !known.contains(&model.as_str()) {
+            return Err(Error::Usage(format!(
+                "{entry}: unknown model (models: {})",
+                known.join(", ")
+            )));
+        }
+        if let Some(first) = models[..index].iter().position(|other| other == model) {
+            return Err(Error::Usage(format!(
+                "{entry} repeats entry {}: each model is run once",
+                first + 1
+            )));
+        }
+    }
+    Ok(())
+}
 
 /// $`\lvert x - x_\text{ref}\rvert / \lvert x_\text{ref}\rvert`$; `None` when either is missing,
 /// not finite, or the reference is zero.

@@ -19,7 +19,8 @@
 //!
 //! * [`quantity`] — [`Quantity`]: description, symbol, unit.
 //! * [`files`] — [`write_atomically`] and the names of a run's files.
-//! * [`run_directory`] — [`RunDirectory`]: the lock, the staging directory, the swap.
+//! * [`run_directory`] — [`RunDirectory`]: the lock, the staging directory, the swap;
+//!   [`DirectoryLock`]: the lock alone, for the directories of `compare` and `bench`.
 //! * [`path_table`] — [`PathPoint`] and [`write_path_csv`].
 //! * [`grid`] — [`GridField`]: a field sampled on a regular grid.
 //! * [`vtu`] — [`write_fields_vtu`] (Q8 mesh, VTK cell type 23) and [`write_surface_vtu`], both
@@ -117,12 +118,12 @@ pub use plots::{
     ProfilePlot, Response, ResponsePoint, WrinkleMap, plot_comparison, plot_profiles,
     plot_response, plot_wrinkle_map,
 };
-pub use progress::{Progress, ProgressSink, ProgressTarget, SearchProgress};
+pub use progress::{Progress, ProgressSink, ProgressTarget, SearchProgress, message_line};
 pub use quantity::Quantity;
 pub use report::{
     Report, ReportFigure, Severity, SummaryRow, SummaryTable, Warning, format_rows, write_report,
 };
-pub use run_directory::RunDirectory;
+pub use run_directory::{DirectoryLock, RunDirectory};
 pub use vtu::{
     FieldData, FieldValue, PointArray, write_fields_vtu, write_fields_vtu_with_cells,
     write_surface_vtu,

@@ -18,6 +18,15 @@ use std::io::{IsTerminal, Write};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
+/// Writes `text` and a newline on standard error, ignoring a failed write: what `eprintln!`
+/// does, except that a standard error that cannot be written (a full disk, `2> /dev/full`) is
+/// not a panic. Every message of the command line outside the progress reports goes through
+/// it; the exit code still says how the command ended.
+pub fn message_line(text: &str) {
+    let mut stderr = std::io::stderr().lock();
+    let _ = writeln!(stderr, "{text}");
+}
+
 /// Shortest time between two plain progress lines (not counting the start and end lines).
 pub const DEFAULT_LINE_INTERVAL: Duration = Duration::from_secs(5);
 

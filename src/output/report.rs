@@ -237,8 +237,9 @@ pub fn format_rows(rows: &[SummaryRow]) -> String {
     text
 }
 
-/// How serious a [`Warning`] is.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// How serious a [`Warning`] is; serialised as its [`Severity::label`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Severity {
     /// Worth knowing (e.g. a fixed wavenumber near the edge of the valid range).
     Note,
@@ -259,8 +260,9 @@ impl Severity {
     }
 }
 
-/// A warning shown prominently near the top of the report.
-#[derive(Clone, Debug, PartialEq, Eq)]
+/// A warning shown prominently near the top of the report (serialised as
+/// `{severity, title, detail}` in `summary.json`'s `notes`).
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
 pub struct Warning {
     /// How serious.
     pub severity: Severity,
@@ -442,9 +444,10 @@ fn push_figures(html: &mut String, figures: &[ReportFigure]) -> io::Result<()> {
     }
     html.push_str("<section>\n<h2>Plots</h2>\n");
     for figure in figures {
-        let bytes = std::fs::read(&figure.png).map_err(|error| {
-            io::Error::new(error.kind(), format!("{}: {error}", figure.png.display()))
-        })?;
+        let bytes = crate::input::read_capped(&figure.png, crate::input::MAX_FIGURE_BYTES)
+            .map_err(|error| {
+                io::Error::new(error.kind(), format!("{}: {error}", figure.png.display()))
+            })?;
         html.push_str(&format!(
             "<figure><img alt=\"{}\" src=\"data:image/png;base64,{}\"><figcaption>{}</figcaption></figure>\n",
             escape(&figure.caption),

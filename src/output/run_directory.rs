@@ -39,6 +39,7 @@ use super::files::{
     write_json,
 };
 use super::invalid;
+use crate::input::{MAX_SUMMARY_BYTES, read_capped};
 use std::collections::BTreeSet;
 use std::ffi::OsString;
 use std::fs::{self, File, OpenOptions};
@@ -74,8 +75,48 @@ pub const STAGING_SUFFIX: &str = ".wrinkle-new";
 pub const RETIRED_SUFFIX: &str = ".wrinkle-old";
 /// The file that marks a staging directory as incomplete (removed once `summary.json` is in).
 pub const STAGING_MARKER: &str = ".wrinkle-staging";
-/// Largest `summary.json` read to find a previous run's files.
-pub const MAX_SUMMARY_BYTES: u64 = 256 << 20;
+
+/// Name of the lock file inside a directory locked with [`DirectoryLock::inside`].
+pub const DIRECTORY_LOCK_FILE: &str = ".wrinkle-lock";
+
+/// An exclusive lock on an output directory that is not swapped in whole (the directories of
+/// `wrinkle compare` and `wrinkle bench`, which hold one run directory per model or point):
+/// the file [`DIRECTORY_LOCK_FILE`] inside it, held until dropped. A second command into the
+/// same directory fails at once, like a second run ([`RunDirectory::open`]).
+#[derive(Debug)]
+pub struct DirectoryLock {
+    _lock: File,
+}
+
+impl DirectoryLock {
+    /// Creates `directory` if needed (with its parents) and locks it.
+    ///
+    /// Errors: another command holds the lock (kind [`io::ErrorKind::WouldBlock`], naming its
+    /// PID); `directory` exists and is not a directory, or is a symbolic link leading nowhere
+    /// (kind [`io::ErrorKind::InvalidInput`]); any I/O error, naming its path.
+    pub fn inside(directory: &Path) -> io::Result<Self> {
+        if let Ok(metadata) = fs::symlink_metadata(directory) {
+            if metadata.file_type().is_symlink() && fs::metadata(directory).is_err() {
+                return Err(invalid(
+                    "output directory",
+                    format!(
+                        "`{}` is a symbolic link that leads nowhere (a loop, or a missing target)",
+                        directory.display()
+                    ),
+                ));
+            }
+            if !directory.is_dir() {
+                return Err(invalid(
+                    "output directory",
+                    format!("`{}` exists and is not a directory", directory.display()),
+                ));
+            }
+        }
+        fs::create_dir_all(directory).map_err(|error| with_path(directory, error))?;
+        let lock = lock(&directory.join(DIRECTORY_LOCK_FILE), directory)?;
+        Ok(DirectoryLock { _lock: lock })
+    }
+}
 
 /// The output directory of one run (module documentation): locked, staged, swapped in whole.
 #[derive(Debug)]
@@ -569,21 +610,21 @@ impl RunContents {
     }
 }
 
-/// The JSON object in `path`, `None` when there is no such file or it is not a JSON object;
-/// read up to [`MAX_SUMMARY_BYTES`].
+/// The JSON object in `path`, `None` when there is no such file, it is larger than
+/// [`MAX_SUMMARY_BYTES`] or it is not a JSON object.
 fn read_summary(path: &Path) -> io::Result<Option<serde_json::Map<String, serde_json::Value>>> {
-    let file = match File::open(path) {
-        Ok(file) => file,
-        Err(error) if error.kind() == io::ErrorKind::NotFound => return Ok(None),
+    let text = match read_capped(path, MAX_SUMMARY_BYTES) {
+        Ok(text) => text,
+        Err(error)
+            if matches!(
+                error.kind(),
+                io::ErrorKind::NotFound | io::ErrorKind::FileTooLarge
+            ) =>
+        {
+            return Ok(None);
+        }
         Err(error) => return Err(with_path(path, error)),
     };
-    let mut text = Vec::new();
-    file.take(MAX_SUMMARY_BYTES + 1)
-        .read_to_end(&mut text)
-        .map_err(|error| with_path(path, error))?;
-    if text.len() as u64 > MAX_SUMMARY_BYTES {
-        return Ok(None);
-    }
     match serde_json::from_slice(&text) {
         Ok(serde_json::Value::Object(summary)) => Ok(Some(summary)),
         _ => Ok(None),

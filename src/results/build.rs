@@ -8,6 +8,7 @@ use super::summary::{
 };
 use super::{RunContext, RunOutcome, Trace};
 use crate::output::{Severity, Warning};
+use crate::scene::Imperfection;
 use crate::threshold::{ThresholdSummary, load_unit};
 use wrinkle_runtime::solve::anm::AnmStep;
 
@@ -48,6 +49,7 @@ impl RunSummary {
                 }
             }),
             imperfection_amplitude: context.imperfection,
+            imperfection_shape: context.imperfection_shape.as_str(),
             stop: if trace.interrupted {
                 "interrupted by the user (Ctrl-C)".to_string()
             } else {
@@ -190,7 +192,7 @@ fn vtu_files(context: &RunContext, trace: &Trace) -> Vec<VtuFile> {
             trace
                 .requested
                 .iter()
-                .map(|s| file(s.load, fields_file_at(s.load))),
+                .map(|s| file(s.load, fields_file_at(s.load, &output.vtu_loads))),
         );
     }
     if output.surface {
@@ -286,28 +288,74 @@ fn notices(context: &RunContext, trace: &Trace) -> Vec<Warning> {
     for note in &context.threshold.notes {
         warnings.push(Warning::new(Severity::Note, "threshold", note.clone()));
     }
-    if !trace.unreached_vtu_loads.is_empty() {
-        let load = context.load_quantity();
-        let loads: Vec<String> = trace
-            .unreached_vtu_loads
-            .iter()
-            .map(|&l| load.format_value(l))
-            .collect();
-        let end = trace.points.last().map_or_else(String::new, |p| {
-            format!(" at λ = {}", load.format_value(p.lambda))
-        });
-        warnings.push(Warning::new(
-            Severity::Note,
-            "output.vtu_loads",
-            format!(
-                "λ = {} not reached (the path ended{end}): no fields_load_*.vtu written for {}",
-                loads.join(", "),
-                if loads.len() == 1 { "it" } else { "them" }
-            ),
-        ));
-    }
+    warnings.extend(imperfection_note(context));
+    warnings.extend(unreached_vtu_loads_notes(context, trace));
     for warning in &trace.result.warnings {
         warnings.push(Warning::new(Severity::Warning, "solver", warning.clone()));
     }
     warnings
+}
+
+/// A note when the imperfection's shape is not the one `solver.imperfection` asked for (a
+/// uniform imperfection needs an envelope model's wavenumber).
+fn imperfection_note(context: &RunContext) -> Option<Warning> {
+    let asked = context.scene.solver.imperfection;
+    let used = context.imperfection_shape;
+    if asked == Imperfection::Auto || asked == used {
+        return None;
+    }
+    Some(Warning::new(
+        Severity::Note,
+        "solver.imperfection",
+        format!(
+            "\"{}\" was asked, but `{}` has no wavenumber to shape a uniform load on its envelope: the \"{}\" imperfection was used (imperfection_shape in summary.json)",
+            asked.as_str(),
+            context.spec.name,
+            used.as_str()
+        ),
+    ))
+}
+
+/// Notes for the `output.vtu_loads` without a file: below the path's first load, or beyond
+/// where it ended.
+fn unreached_vtu_loads_notes(context: &RunContext, trace: &Trace) -> Vec<Warning> {
+    let load = context.load_quantity();
+    let start = trace.points.first().map(|p| p.lambda);
+    let (below, beyond): (Vec<f64>, Vec<f64>) = trace
+        .unreached_vtu_loads
+        .iter()
+        .partition(|&&l| start.is_some_and(|start| l < start));
+    let listed = |loads: &[f64]| -> String {
+        let texts: Vec<String> = loads.iter().map(|&l| load.format_value(l)).collect();
+        texts.join(", ")
+    };
+    let pronoun = |loads: &[f64]| if loads.len() == 1 { "it" } else { "them" };
+    let mut notes = Vec::new();
+    if let (false, Some(start)) = (below.is_empty(), start) {
+        notes.push(Warning::new(
+            Severity::Note,
+            "output.vtu_loads",
+            format!(
+                "λ = {} lies below the path's first load λ = {}: no fields_load_*.vtu written for {}",
+                listed(&below),
+                load.format_value(start),
+                pronoun(&below)
+            ),
+        ));
+    }
+    if !beyond.is_empty() {
+        let end = trace.points.last().map_or_else(String::new, |p| {
+            format!(" at λ = {}", load.format_value(p.lambda))
+        });
+        notes.push(Warning::new(
+            Severity::Note,
+            "output.vtu_loads",
+            format!(
+                "λ = {} not reached (the path ended{end}): no fields_load_*.vtu written for {}",
+                listed(&beyond),
+                pronoun(&beyond)
+            ),
+        ));
+    }
+    notes
 }

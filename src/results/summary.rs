@@ -38,6 +38,9 @@ pub struct RunSummary {
     pub loss_of_ellipticity: Option<LossOfEllipticity>,
     /// Physical amplitude (mm) of the imperfection's response on the unloaded sheet.
     pub imperfection_amplitude: f64,
+    /// The imperfection's shape as used, `uniform` or `mode` (`solver.imperfection` resolved
+    /// for the model; a note says so where it differs from what the scene asked).
+    pub imperfection_shape: &'static str,
     /// Why the path stopped, in words.
     pub stop: String,
     /// How the run ended: `outcome`, `outcome_reason`, `exit_code`, `failed`.
@@ -64,8 +67,10 @@ pub struct RunSummary {
     /// The effective scene, as echoed.
     pub scene: serde_json::Value,
     /// What the report and the terminal show besides the table: validity checks, loss of
-    /// ellipticity, unstable branches, notes, solver warnings (not serialised).
-    #[serde(skip)]
+    /// ellipticity, unstable branches, notes — among them every value of the scene that was
+    /// not used as given — and solver warnings; serialised as `notes`, each
+    /// `{severity, title, detail}`.
+    #[serde(rename = "notes")]
     pub notices: Vec<Warning>,
     /// The one-mode closed form (eq. 62) over the path's load range, as
     /// $`(\lambda/\lambda_c, 2a/h)`$, where it applies (not serialised; the response plot draws it).
@@ -201,9 +206,37 @@ pub const FINAL_FIELDS_FILE: &str = "fields_final.vtu";
 /// Name of the VTU file of the sampled surface at the last point.
 pub const FINAL_SURFACE_FILE: &str = "surface_final.vtu";
 
-/// Name of the VTU file of the fields at a requested load (`output.vtu_loads`).
-pub fn fields_file_at(load: f64) -> String {
-    format!("fields_load_{load:.6}.vtu")
+/// Name of the VTU file of the fields at `load`, one of the requested `loads`
+/// (`output.vtu_loads`): `fields_load_L.vtu` with $`L`$ to 6 decimals, or to as many more (up
+/// to [`MAX_FIELDS_FILE_DECIMALS`]) as keep the names of all requested loads distinct and no
+/// non-zero load at zero (`[1e-7, 2e-7]` gives `fields_load_0.0000001.vtu` and
+/// `fields_load_0.0000002.vtu`); beyond that, $`L`$ in the shortest scientific notation that
+/// reads back as the load (`fields_load_1e-300.vtu`), distinct for distinct loads.
+pub fn fields_file_at(load: f64, loads: &[f64]) -> String {
+    match fields_file_decimals(loads) {
+        Some(decimals) => format!("fields_load_{load:.decimals$}.vtu"),
+        None => format!("fields_load_{load:e}.vtu"),
+    }
+}
+
+/// Most decimals of a load in a `fields_load_L.vtu` name before scientific notation.
+pub const MAX_FIELDS_FILE_DECIMALS: usize = 12;
+
+/// The fewest decimals from 6 to [`MAX_FIELDS_FILE_DECIMALS`] that print every one of `loads`
+/// distinctly and no non-zero one as zero; `None` when there are none.
+fn fields_file_decimals(loads: &[f64]) -> Option<usize> {
+    (6..=MAX_FIELDS_FILE_DECIMALS).find(|&decimals| {
+        let texts: Vec<String> = loads.iter().map(|l| format!("{l:.decimals$}")).collect();
+        let zero = format!("{:.decimals$}", 0.0);
+        let distinct = texts
+            .iter()
+            .enumerate()
+            .all(|(index, text)| !texts[..index].contains(text));
+        let faithful = loads.iter().zip(&texts).all(|(load, text)| {
+            *load == 0.0 || (text != &zero && text.trim_start_matches('-') != zero)
+        });
+        distinct && faithful
+    })
 }
 
 /// `outcome` (its name), `outcome_reason`, `exit_code` and `failed`.

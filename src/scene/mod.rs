@@ -84,24 +84,18 @@ impl Scene {
                 format!("cannot read file: {error}"),
             )
         };
-        let mut bytes = Vec::new();
-        std::io::Read::read_to_end(
-            &mut std::io::Read::take(
-                std::fs::File::open(path).map_err(cannot)?,
-                MAX_SCENE_BYTES + 1,
-            ),
-            &mut bytes,
-        )
-        .map_err(cannot)?;
-        if bytes.len() as u64 > MAX_SCENE_BYTES {
-            return Err(Error::scene(
-                format!("scene {name}"),
-                "",
-                format!("larger than {MAX_SCENE_BYTES} bytes: not a scene file"),
-            ));
-        }
-        let text = String::from_utf8(bytes).map_err(|e| {
-            Error::scene(format!("scene {name}"), "", format!("not UTF-8 text: {e}"))
+        let text = crate::input::read_capped_text(path, MAX_SCENE_BYTES).map_err(|error| {
+            match error.kind() {
+                std::io::ErrorKind::FileTooLarge => Error::scene(
+                    format!("scene {name}"),
+                    "",
+                    format!("{error}: not a scene file"),
+                ),
+                std::io::ErrorKind::InvalidData => {
+                    Error::scene(format!("scene {name}"), "", error.to_string())
+                }
+                _ => cannot(error),
+            }
         })?;
         Scene::from_toml_str(&text, &name)
     }

@@ -39,8 +39,16 @@ impl PriorThreshold {
         let file = path.display().to_string();
         let source = format!("--threshold {file}");
         let fail = |key: &str, message: String| Error::scene(&source, key, message);
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| fail("", format!("cannot read the file: {e}")))?;
+        let text =
+            crate::input::read_capped_text(path, crate::input::MAX_SUMMARY_BYTES).map_err(|e| {
+                let why = match e.kind() {
+                    std::io::ErrorKind::FileTooLarge => {
+                        "not the output of `wrinkle buckle --json` or a run's summary.json"
+                    }
+                    _ => "cannot read the file",
+                };
+                fail("", format!("{why}: {e}"))
+            })?;
         let value: Value = serde_json::from_str(&text).map_err(|e| {
             fail(
                 "",
