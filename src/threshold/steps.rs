@@ -344,11 +344,15 @@ fn long_wavelength_end_note(scene: &Scene, q: f64) -> String {
     )
 }
 
-/// A hint when the wave vector (`model.direction`) is far from the direction the load
-/// compresses: along X for the biaxial load ($`\lambda = -N_X`$), along Y for the strip (the
-/// transverse compression near its middle). An envelope model then sees no compression along
-/// its carrier, and no wavenumber buckles.
+/// A hint when the wave vector (`model.direction`) is more than 10° from
+/// the direction the load compresses: along X for the biaxial load ($`\lambda = -N_X`$), along
+/// Y for the strip (the transverse compression near its middle). An envelope model then sees
+/// little or no compression along its carrier — on example 1 the tension $`N_Y`$ outweighs
+/// $`\lambda\cos^2\theta`$ already at $`\theta = 57°`$ — and no wavenumber buckles.
 fn direction_hint(scene: &Scene) -> String {
+    /// Angle between the wave vector and the compression beyond which a failed search names
+    /// `model.direction`.
+    const DIRECTION_HINT_DEGREES: f64 = 10.0;
     let theta = scene.model.direction_degrees.to_radians();
     let (compressed, expected) = match scene.load.kind {
         LoadKind::Biaxial => ("along X (λ = −N_X)", 0.0),
@@ -359,7 +363,7 @@ fn direction_hint(scene: &Scene) -> String {
     } else {
         theta.sin().abs()
     };
-    if along < 0.5 {
+    if along < DIRECTION_HINT_DEGREES.to_radians().cos() {
         format!(
             " The {} load compresses the sheet {compressed}, but the wave vector is at model.direction = {}° from X: set model.direction = {expected}{}.",
             scene.load.kind.as_str(),
