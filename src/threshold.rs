@@ -66,7 +66,7 @@ pub use wavenumber_model::{CarrierThreshold, WAVENUMBER_MODEL_KEY, WavenumberMod
 
 use crate::error::Error;
 use crate::physics::{Layout, Snapshot, wavelength_along_line};
-use crate::scene::{Scene, Wavenumber};
+use crate::scene::{LoadKind, Scene, Wavenumber};
 use crate::setup::{build_problem, configure_model, layout_of, unknown_model};
 use std::f64::consts::PI;
 use steps::ThresholdSteps;
@@ -132,7 +132,7 @@ pub fn find_threshold_with<M: EnergyModel>(
         scene,
         quiet: options.quiet,
         wavenumber_model,
-        notes: Vec::new(),
+        notes: unused_keys_notes(scene),
     };
     let found = steps.critical_point(problem, factor, options.prior)?;
     let wavelength = match found.wavenumber {
@@ -250,4 +250,17 @@ impl ModelVisitor for ThresholdVisitor<'_> {
 pub fn buckle(scene: &Scene, quiet: bool) -> Result<Threshold, Error> {
     with_model(&scene.model.name, ThresholdVisitor { scene, quiet })
         .unwrap_or_else(|| Err(unknown_model(scene)))
+}
+
+/// Notes for keys the scene gives that its load does not use: `load.tension_y` under the
+/// strip load (example 2 has no tension).
+fn unused_keys_notes(scene: &Scene) -> Vec<String> {
+    let mut notes = Vec::new();
+    if scene.load.kind == LoadKind::Strip && scene.was_given("load.tension_y") {
+        notes.push(format!(
+            "`load.tension_y` = {} is ignored: the strip load (`load.kind = \"strip\"`) has no tension",
+            scene.load.tension_y
+        ));
+    }
+    notes
 }

@@ -355,3 +355,31 @@ fn compare_model_list_is_checked_before_any_work() {
     assert!(stderr(&output).contains("entry 2 (``) is empty"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// "A requested value that is dropped without a note": `load.tension_y` given to the strip
+/// load, which has no tension, was ignored silently; the threshold (and so `buckle` and every
+/// run) now says so in a note.
+#[test]
+fn tension_given_to_the_strip_is_noted() {
+    let output = wrinkle(&[
+        "buckle",
+        "-q",
+        "--json",
+        "--set",
+        "load.kind=strip",
+        "--set",
+        "model.direction=90",
+        "--set",
+        "load.tension_y=5",
+        "--set",
+        "mesh.nx=16",
+        "--set",
+        "mesh.ny=8",
+    ])
+    .output()
+    .unwrap();
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let threshold: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    let notes = threshold["notes"].to_string();
+    assert!(notes.contains("`load.tension_y` = 5 is ignored"), "{notes}");
+}

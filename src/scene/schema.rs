@@ -139,7 +139,7 @@ scene_schema! {
         /// $`\lambda = -N_X`$ (compression on $`X = 0, L_X`$). `"strip"`: example 2 — short
         /// sides clamped, $`\lambda`$ = prescribed end displacement
         kind => kind: LoadKind = LoadKind::Biaxial, one_of::<LoadKind>(), Unit::NONE;
-        /// tension $`N_Y`$ (biaxial only; ignored by the strip)
+        /// tension $`N_Y`$ (biaxial only; the strip ignores it, with a note)
         tension_y => tension_y: f64 = 10.0, Float::at_least(0.0), Unit::N_PER_MM,
             note "and the tension strain $`N_Y/(Eh)`$ at most 1";
     }
@@ -194,7 +194,9 @@ scene_schema! {
         /// shaped like the first buckling mode, $`F = \varepsilon K_0\varphi`$ ($`K_0`$ the
         /// tangent of the unloaded state), scaled so that the physical amplitude it gives on
         /// the unloaded sheet is `perturbation`·h — the same imperfection for every model;
-        /// `"auto"`: uniform for envelope models, mode for the plate
+        /// `"auto"`: uniform for envelope models, mode for the plate. `"uniform"` asked of a
+        /// model without a wavenumber (the plate) is the mode, with a note; `summary.json`'s
+        /// `imperfection_shape` records the shape used
         imperfection => imperfection: Imperfection = Imperfection::Auto,
             one_of::<Imperfection>(), Unit::NONE;
         /// use Padé approximants (common denominator) to lengthen ANM steps beyond the plain
@@ -217,9 +219,13 @@ scene_schema! {
 
     /// What `wrinkle run` writes.
     [output] OutputSpec {
-        /// output directory (`--out DIR` overrides it)
+        /// output directory (`--out DIR` overrides it): locked while a run writes it (a second
+        /// run into it fails at once), written beside it and swapped in whole
+        /// (docs/outputs.md)
         directory => directory: String = "out".to_string(), Text, Unit::NONE;
-        /// loads $`\lambda`$ at which the fields are written as VTU
+        /// loads $`\lambda`$ at which the fields are written as VTU (`fields_load_L.vtu`, with
+        /// as many decimals as keep the names distinct); a load the path does not reach, below
+        /// its start or beyond its end, gets no file and a note
         vtu_loads => vtu_loads: Vec<f64> = Vec::new(),
             FloatList::of(Float::finite()), Unit::LOAD,
             note "at most 100 loads, no two equal";
