@@ -10,7 +10,7 @@ mod summary;
 
 pub use summary::{
     AnmStepRecord, DetectedBifurcation, FINAL_FIELDS_FILE, FINAL_SURFACE_FILE, LossOfEllipticity,
-    Memory, PathCounts, RunSummary, Timings, VtuFile, fields_file_at,
+    MAX_FIELDS_FILE_DECIMALS, Memory, PathCounts, RunSummary, Timings, VtuFile, fields_file_at,
 };
 
 use crate::error::Error;

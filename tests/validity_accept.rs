@@ -74,14 +74,18 @@ fn an_unknown_model_set_by_an_override_names_the_override() {
 }
 
 /// The inputs of the issue whose wavelength breaks the envelope model's scale separation — a
-/// 1 × 1 mm plate, h = 5 mm on 400 × 200 mm, Q = 10⁶/mm (wavelength below h) — each exit 4
-/// with the check named and the wavelength quoted.
+/// 1 × 1 mm plate, h = 5 mm on 400 × 200 mm, Q = 60/mm (wavelength 2.1 h) — each exit 4 with
+/// the check named and the wavelength quoted. A wavelength below the thickness itself
+/// (Q = 10⁶/mm) is refused where it enters since issue 26: exit 2 naming `model.wavenumber`.
 #[test]
 fn wavelengths_outside_scale_separation_exit_4() {
+    let (code, _, stderr) = wrinkle(&["buckle", "-q", "--set", "model.wavenumber=1e6"]);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("key `model.wavenumber`"), "{stderr}");
     for overrides in [
         &["geometry.lx=1", "geometry.ly=1"][..],
         &["material.thickness=5"][..],
-        &["model.wavenumber=1e6"][..],
+        &["model.wavenumber=60"][..],
     ] {
         let mut arguments = vec!["buckle", "-q"];
         for o in overrides {
