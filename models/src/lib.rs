@@ -46,6 +46,9 @@ registry! {
     complex_envelope::ComplexEnvelope,
     reference_envelope::ReferenceEnvelope,
     pure_membrane::PureMembrane,
+    beam_full::BeamFull,
+    beam_envelope::BeamEnvelope,
+    beam_complex_envelope::BeamComplexEnvelope,
 }
 
 /// Names of every registered model.

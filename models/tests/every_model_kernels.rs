@@ -221,7 +221,8 @@ fn every_registered_model_declares_its_field_roles() {
     }
 }
 
-/// The assembled sparse tangent of every model, on a 2 × 1 mesh at a random state, equals the
+/// The assembled sparse tangent of every model, on a 2 × 1 Q8 mesh (3 Hermite2 line elements
+/// for a model with second derivatives) at a random state, equals the
 /// `Dual64` Jacobian of the assembled internal forces entry by entry — so the sparsity pattern,
 /// which leaves out the field blocks no term couples (`field_couplings`), drops nothing.
 struct AssembledTangent;
@@ -237,7 +238,14 @@ impl ModelVisitor for AssembledTangent {
         for name in spec.parameters {
             model.set_parameter(name, parameter_value(name)).unwrap();
         }
-        let mesh = Arc::new(Mesh::rectangle(20.0, 10.0, 2, 1, 1.0).unwrap());
+        // A model reading second derivatives (the beam's `v.xx`) on the element that has them.
+        let second = spec.jet.iter().any(|entry| entry.derivative.order() == 2);
+        let mesh = if second {
+            Mesh::line(20.0, 3, 1.0, wrinkle_runtime::fem::ElementKind::Hermite2).unwrap()
+        } else {
+            Mesh::rectangle(20.0, 10.0, 2, 1, 1.0).unwrap()
+        };
+        let mesh = Arc::new(mesh);
         let problem = Problem::new(model, mesh, &[], &Default::default()).unwrap();
         let n = problem.free_count();
         let nf = spec.fields.len();
