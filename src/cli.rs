@@ -67,7 +67,7 @@ pub enum Command {
         /// Scene and overrides.
         #[command(flatten)]
         scene: SceneArguments,
-        /// Comma-separated model names (default: every registered model).
+        /// Comma-separated model names (default: every registered model of a plane domain).
         #[arg(long, value_delimiter = ',')]
         models: Vec<String>,
         /// Override a scene key for one model only, `MODEL:KEY=VALUE` (repeatable), e.g.
@@ -269,7 +269,9 @@ fn run(
     Ok(())
 }
 
-/// `wrinkle compare`: every registered model unless `models` names some.
+/// `wrinkle compare`: every registered model that runs on the scene's plane domain (roles that
+/// give a plane [`Layout`](crate::physics::Layout): in-plane displacements along X and Y — not
+/// the beam models of a line) unless `models` names some.
 fn compare(
     scene: &Scene,
     models: &[String],
@@ -278,9 +280,10 @@ fn compare(
     quiet: bool,
 ) -> Result<(), Error> {
     let models: Vec<String> = if models.is_empty() {
-        wrinkle_models::names()
-            .iter()
-            .map(|m| m.to_string())
+        wrinkle_models::catalogue()
+            .into_iter()
+            .filter(|spec| crate::physics::Layout::from_spec(spec).is_ok())
+            .map(|spec| spec.name.to_string())
             .collect()
     } else {
         models.to_vec()
