@@ -140,6 +140,31 @@ fn beam_envelopes_thresholds_converge_as_h4_to_their_finite_length_closed_forms(
     envelope_thresholds(10.25, &[2, 4, 8]);
 }
 
+/// Compression by end displacement: the pre-buckling force is $`ES\,\lambda/L`$ for a
+/// shortening $`\lambda`$, so the critical shortening is the critical force times $`L/ES`$, on
+/// the same mesh to round-off.
+#[test]
+fn beam_end_shortening_thresholds_are_the_force_thresholds_times_length_over_es() {
+    let wavelengths = 10.25;
+    let length = length_of(wavelengths);
+    let elements = (wavelengths * 16.0) as usize;
+    let pairs = [
+        (
+            buckle(&full_shortened(length, elements, Ends::Clamped)).critical_loads[0],
+            buckle(&full(length, elements, 0.0, Ends::Clamped)).critical_loads[0],
+        ),
+        (
+            buckle(&envelope_shortened(length, 8)).critical_loads[0],
+            buckle(&envelope(length, 8, 0.0)).critical_loads[0],
+        ),
+    ];
+    for (shortening, force) in pairs {
+        let relative = shortening * ES / length / force - 1.0;
+        println!("critical shortening {shortening:.10} mm, force {force:.10} N: {relative:+.1e}");
+        assert!(relative.abs() < 1e-9, "{relative:e}");
+    }
+}
+
 #[test]
 #[ignore = "100 wavelengths: run with --ignored"]
 fn beam_thresholds_at_a_hundred_wavelengths() {

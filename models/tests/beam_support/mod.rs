@@ -158,6 +158,35 @@ pub fn complex_envelope(length: f64, elements: usize, cubic: f64) -> Problem<Bea
     Problem::new(model, mesh, &conditions, &end_force()).unwrap()
 }
 
+/// The end shortening $`\lambda`$ (mm) prescribed on `u` at the right end: displacement
+/// control, $`u(L) = -\lambda`$.
+fn end_shortening() -> DirichletCondition {
+    DirichletCondition {
+        value_per_load: -1.0,
+        ..DirichletCondition::fixed("right", 0)
+    }
+}
+
+/// `beam-full` as [`full`] but compressed by the end shortening $`\lambda`$ instead of a force.
+pub fn full_shortened(length: f64, elements: usize, ends: Ends) -> Problem<BeamFull> {
+    let kind = ElementKind::Hermite2;
+    let mesh = Arc::new(Mesh::line(length, elements, 1.0, kind).unwrap());
+    let mut conditions = conditions(kind, &[1], ends);
+    conditions.push(end_shortening());
+    let model = BeamFull::new(EI, ES, C, 0.0);
+    Problem::new(model, mesh, &conditions, &Loads::default()).unwrap()
+}
+
+/// `beam-envelope` as [`envelope`] but compressed by the end shortening $`\lambda`$.
+pub fn envelope_shortened(length: f64, elements: usize) -> Problem<BeamEnvelope> {
+    let kind = ElementKind::Line3;
+    let mesh = Arc::new(Mesh::line(length, elements, 1.0, kind).unwrap());
+    let mut conditions = conditions(kind, &[1], Ends::SimplySupported);
+    conditions.push(end_shortening());
+    let model = BeamEnvelope::new(EI, ES, C, 0.0, critical_wavenumber());
+    Problem::new(model, mesh, &conditions, &Loads::default()).unwrap()
+}
+
 /// Linear buckling of `problem` (its first mode). A long beam's critical loads cluster
 /// (neighbouring wave counts differ by $`4EI(\pi/L)^2`$): a Krylov basis of 150.
 pub fn buckle<M: EnergyModel>(problem: &Problem<M>) -> LinearBuckling {
