@@ -26,7 +26,11 @@
 //!   Ginzburg–Landau soliton of (14), $`2v_1 = 2\sqrt{2\mu/(3|c_3|)}\,\mathrm{sech}(X/\xi)`$,
 //!   $`\mu = (\lambda_c - \lambda)Q^2`$, $`\xi = \sqrt{(6EIQ^2 - \lambda)/\mu}`$ — no tuning.
 //!
-//! Ignored versions do 100 wavelengths.
+//! Not at 100 wavelengths: there the load continuation used here (Newton at fixed loads from
+//! the scaled mode) does not get through — the hardening full beam stalls near 1.04–1.08 λ_c
+//! where waves enter at the clamped ends (a nearly singular tangent), and the softening branch
+//! is already a localised packet at the first load, far from the mode. An arc-length path
+//! follower with a localised start would be needed (`docs/beam.md`).
 
 mod beam_support;
 
@@ -43,11 +47,10 @@ fn landau_coefficient(cubic: f64, wavenumber: f64) -> f64 {
     3.0 * cubic / (4.0 * wavenumber * wavenumber)
 }
 
-/// First-guess amplitude of a clamped beam's branch at `load`: the mode
+/// Landau coefficient of a clamped beam's first branch, for its first guess: the mode
 /// $`\sin(\pi X/L)\cos QX`$ in the energy gives $`\lambda - \lambda_1 = \tfrac{9c_3}{16Q^2}a^2`$.
-fn modulated_amplitude(cubic: f64, critical: f64, load: f64) -> f64 {
-    let q2 = critical_wavenumber().powi(2);
-    ((load - critical) * 16.0 * q2 / (9.0 * cubic)).sqrt()
+fn modulated_landau(cubic: f64) -> f64 {
+    9.0 * cubic / (16.0 * critical_wavenumber().powi(2))
 }
 
 #[test]
@@ -61,8 +64,7 @@ fn beam_full_hardening_amplitude_near_threshold_follows_the_landau_law() {
     let critical = buckling.critical_loads[0];
     let alpha = landau_coefficient(HARDENING, k);
     let loads: Vec<f64> = [1e-4, 4e-4].iter().map(|e| critical * (1.0 + e)).collect();
-    let first = ((loads[0] - critical) / alpha).sqrt();
-    let (path, failure) = continuation(&problem, &buckling, first, &loads);
+    let (path, failure) = continuation(&problem, &buckling, alpha, &loads);
     assert!(failure.is_none(), "{failure:?}");
     let measured: Vec<(f64, f64)> = path
         .iter()
@@ -110,25 +112,24 @@ fn hardening_comparison(wavelengths: f64) {
     let full_buckling = buckle(&full_problem);
     let envelope_buckling = buckle(&envelope_problem);
     let complex_buckling = buckle(&complex_problem);
-    let first = |critical: f64| modulated_amplitude(HARDENING, critical, loads[0]);
     let (full_path, failure) = continuation(
         &full_problem,
         &full_buckling,
-        first(full_buckling.critical_loads[0]),
+        modulated_landau(HARDENING),
         &loads,
     );
     assert!(failure.is_none(), "full: {failure:?}");
     let (envelope_path, failure) = continuation(
         &envelope_problem,
         &envelope_buckling,
-        first(envelope_buckling.critical_loads[0]),
+        modulated_landau(HARDENING),
         &loads,
     );
     assert!(failure.is_none(), "envelope: {failure:?}");
     let (complex_path, failure) = continuation(
         &complex_problem,
         &complex_buckling,
-        first(complex_buckling.critical_loads[0]),
+        modulated_landau(HARDENING),
         &loads,
     );
     assert!(failure.is_none(), "complex envelope: {failure:?}");
@@ -197,26 +198,25 @@ fn softening_comparison(wavelengths: f64) {
         .map(|i| 0.002 * (125.0_f64).powf(i as f64 / 30.0))
         .collect();
     let loads = loads_from_threshold(&deltas, -1.0);
-    let first = |critical: f64| modulated_amplitude(SOFTENING, critical, loads[0]);
     let full_buckling = buckle(&full_problem);
     let envelope_buckling = buckle(&envelope_problem);
     let complex_buckling = buckle(&complex_problem);
     let (full_path, full_failure) = continuation(
         &full_problem,
         &full_buckling,
-        first(full_buckling.critical_loads[0]),
+        modulated_landau(SOFTENING),
         &loads,
     );
     let (envelope_path, envelope_failure) = continuation(
         &envelope_problem,
         &envelope_buckling,
-        first(envelope_buckling.critical_loads[0]),
+        modulated_landau(SOFTENING),
         &loads,
     );
     let (complex_path, complex_failure) = continuation(
         &complex_problem,
         &complex_buckling,
-        first(complex_buckling.critical_loads[0]),
+        modulated_landau(SOFTENING),
         &loads,
     );
     println!(
@@ -296,11 +296,4 @@ where
 #[test]
 fn beam_softening_full_and_envelope_both_localise() {
     softening_comparison(30.0);
-}
-
-#[test]
-#[ignore = "100 wavelengths: run with --ignored"]
-fn beam_post_buckling_at_a_hundred_wavelengths() {
-    hardening_comparison(100.0);
-    softening_comparison(100.0);
 }

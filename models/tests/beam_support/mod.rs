@@ -149,7 +149,11 @@ pub fn envelope(length: f64, elements: usize, cubic: f64) -> Problem<BeamEnvelop
 }
 
 /// `beam-complex-envelope` at the critical wavenumber on `elements` Line3 elements,
-/// $`a = b = 0`$ at the ends.
+/// $`a = b = 0`$ at the ends. The energy is invariant under a constant phase
+/// $`v_1 \mapsto e^{i\phi}v_1`$, which the ends do not fix: the thresholds are two-fold and the
+/// tangent on a buckled state is singular along $`(-b, a)`$. Newton converged on every state
+/// below regardless (the null direction does not change the residual); pinning $`b = 0`$ at
+/// the middle node instead sent the softening branch to a packet away from the middle.
 pub fn complex_envelope(length: f64, elements: usize, cubic: f64) -> Problem<BeamComplexEnvelope> {
     let kind = ElementKind::Line3;
     let mesh = Arc::new(Mesh::line(length, elements, 1.0, kind).unwrap());
@@ -268,29 +272,68 @@ pub struct Equilibrium {
 }
 
 /// A load continuation on the branch of the first buckling mode: Newton at each load of
-/// `loads` in turn. The first guess is the pre-buckling state plus the mode with amplitude
-/// `first_amplitude` at the middle; the next ones, the pre-buckling state at the new load plus
-/// the last solution's deviation from its own, scaled by the Landau law's amplitude ratio
-/// $`\sqrt{(\lambda - \lambda_1)/(\lambda_\text{prev} - \lambda_1)}`$. A failed step is
-/// halved (up to 8 times; the intermediate states are not recorded). Stops at the first load
-/// that cannot be reached, returning the path so far and the failure.
+/// `loads` in turn. A supercritical branch ($`\alpha > 0`$) is entered close to the threshold
+/// $`\lambda_1`$, at $`10^{-4}`$ of the way to the first load (a subcritical one at the first
+/// load), from the pre-buckling state plus the mode with the
+/// amplitude of the Landau law $`\lambda - \lambda_1 = \alpha a^2`$ (`landau` is
+/// $`\alpha`$), then followed to the first load in 16 geometric steps (not recorded: on a long
+/// beam the mode turns into a plateau with boundary layers well before it). Each guess is the
+/// pre-buckling state at the new load plus the last solution's deviation from its own, scaled by
+/// the Landau ratio $`\sqrt{(\lambda - \lambda_1)/(\lambda_\text{prev} - \lambda_1)}`$; a
+/// failed step is halved (up to 8 times). Stops at the first load that cannot be reached,
+/// returning the path so far and the failure.
 pub fn continuation<M: EnergyModel>(
     problem: &Problem<M>,
     buckling: &LinearBuckling,
-    first_amplitude: f64,
+    landau: f64,
     loads: &[f64],
 ) -> (Vec<Equilibrium>, Option<String>)
 where
     Problem<M>: Amplitude,
 {
+    continuation_to(problem, buckling, landau, loads, 1e-10)
+}
+
+/// [`continuation`] with Newton's relative-residual `tolerance` (1e-10 there; 1e-8 on the
+/// longest beams, where the field-balanced residual stalls between 1e-9 and 1e-8 as waves
+/// enter at the ends and the tangent is nearly singular).
+pub fn continuation_to<M: EnergyModel>(
+    problem: &Problem<M>,
+    buckling: &LinearBuckling,
+    landau: f64,
+    loads: &[f64],
+    tolerance: f64,
+) -> (Vec<Equilibrium>, Option<String>)
+where
+    Problem<M>: Amplitude,
+{
+    let critical = buckling.critical_loads[0];
+    // A subcritical branch (α < 0) localises instead of forming a plateau: entered directly.
+    let entry_fraction: f64 = if landau > 0.0 { 1e-4 } else { 1.0 };
+    let entry = critical + entry_fraction * (loads[0] - critical);
     let mut stepper = Stepper {
         problem,
         buckling,
         factor: SparseFactorization::analyze(problem.assembler.pattern()).unwrap(),
         matrix: problem.new_matrix(),
-        deviation: scaled_mode(problem, &buckling.modes[0], first_amplitude),
+        deviation: scaled_mode(
+            problem,
+            &buckling.modes[0],
+            ((entry - critical) / landau).sqrt(),
+        ),
         load: None,
+        // The entry steps are not recorded: a looser tolerance near the threshold, where the
+        // tangent is nearly singular.
+        tolerance: tolerance.max(1e-8),
     };
+    let entry_steps = if landau > 0.0 { 16 } else { 0 };
+    for i in 0..entry_steps {
+        let load = critical + (loads[0] - critical) * 10f64.powf(-4.0 * (1.0 - i as f64 / 16.0));
+        if let Err(error) = stepper.step(load) {
+            return (Vec::new(), Some(format!("entering the branch: {error}")));
+        }
+    }
+    stepper.tolerance = tolerance;
     let middle = 0.5 * problem.assembler.mesh().bounds()[1];
     let mut path = Vec::new();
     for &target in loads {
@@ -327,6 +370,7 @@ struct Stepper<'a, M: EnergyModel> {
     matrix: wrinkle_runtime::linear::SparseMatrix,
     deviation: Vec<f64>,
     load: Option<f64>,
+    tolerance: f64,
 }
 
 impl<M: EnergyModel> Stepper<'_, M> {
@@ -343,7 +387,7 @@ impl<M: EnergyModel> Stepper<'_, M> {
             .map(|(p, d)| p + ratio * d)
             .collect();
         let options = NewtonOptions {
-            tolerance: 1e-10,
+            tolerance: self.tolerance,
             max_iterations: 25,
         };
         let problem = self.problem;
