@@ -28,6 +28,7 @@
 //! The crate is a plain library; the `wrinkle-macros` proc-macro crate only calls
 //! [`expand`].
 
+pub mod ansatz;
 pub mod codegen;
 pub mod graph;
 pub mod kernel;
