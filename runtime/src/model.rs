@@ -85,6 +85,10 @@ pub struct ModelSpec {
     pub terms: &'static [TermSpec],
     /// Why the e-graph simplification of each kernel stopped, and its sizes (human readable).
     pub simplification_report: &'static str,
+    /// For a model the DSL derived from a microscopic energy (an `ansatz`, `docs/dsl.md`): its
+    /// provenance (the microscopic energy and the ansatz), the derived densities in DSL syntax
+    /// and the derivation's sizes (human readable). `None` for a hand-written model.
+    pub derivation: Option<&'static str>,
 }
 
 impl ModelSpec {

@@ -42,6 +42,7 @@ static SPEC: ModelSpec = ModelSpec {
     }],
     terms: &TERMS,
     simplification_report: "hand-written",
+    derivation: None,
 };
 
 #[derive(Clone, Debug)]

@@ -173,6 +173,7 @@ fn model_spec(
             jet: &[#(#jet_entries),*],
             terms: &[#(#term_specs),*],
             simplification_report: #report,
+            derivation: ::core::option::Option::None,
         }
     }
 }
@@ -308,6 +309,7 @@ pub fn generate_stub(outline: &ModelOutline) -> TokenStream {
                 jet: &[],
                 terms: &[],
                 simplification_report: "",
+                derivation: ::core::option::Option::None,
             };
 
             #parameter_methods

@@ -136,14 +136,29 @@ spelled_enum! {
         EnvelopeImaginary => "envelope_imaginary",
         /// Mean (zeroth-harmonic) deflection $`w_0`$ of an envelope model.
         MeanDeflection => "mean_deflection",
+        /// Real envelope $`w_2`$ of the second harmonic of the deflection: it adds
+        /// $`2 w_2 \cos(2Q\,\mathbf{e}\cdot\mathbf{X})`$ to the physical deflection
+        /// (THEORY.md §3).
+        SecondEnvelope => "second_envelope",
+        /// Real part of the second harmonic $`u_2`$ of the in-plane displacement along X,
+        /// $`u = u_0 + 2\,\mathrm{Re}(u_2 e^{2iQ\,\mathbf{e}\cdot\mathbf{X}})`$ (an envelope
+        /// of the membrane: zero where the envelopes are).
+        SecondDisplacementXReal => "second_displacement_x_real",
+        /// Imaginary part of the second harmonic $`u_2`$ of the in-plane displacement along X.
+        SecondDisplacementXImaginary => "second_displacement_x_imaginary",
+        /// Real part of the second harmonic $`v_2`$ of the in-plane displacement along Y.
+        SecondDisplacementYReal => "second_displacement_y_real",
+        /// Imaginary part of the second harmonic $`v_2`$ of the in-plane displacement along Y.
+        SecondDisplacementYImaginary => "second_displacement_y_imaginary",
         /// No role declared: the runtime derives nothing from the field.
         Other => "other",
     }
 }
 
 impl FieldRole {
-    /// Whether the field is an out-of-plane quantity (a deflection, a rotation, an envelope):
-    /// clamped and simply supported plate edges constrain these, not the in-plane ones.
+    /// Whether the field is an out-of-plane quantity (a deflection, a rotation, an envelope) or
+    /// a harmonic envelope of the in-plane displacement: clamped and simply supported plate
+    /// edges constrain these, not the in-plane displacements themselves.
     pub fn is_transverse(self) -> bool {
         !matches!(
             self,

@@ -690,6 +690,7 @@ mod tests {
         ],
         terms: &TERMS,
         simplification_report: "hand-written",
+        derivation: None,
     };
 
     #[derive(Clone, Debug)]

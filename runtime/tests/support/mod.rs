@@ -36,6 +36,7 @@ static SPEC: ModelSpec = ModelSpec {
     }],
     terms: &TERMS,
     simplification_report: "hand-written",
+    derivation: None,
 };
 
 /// The spring's constants.
