@@ -163,6 +163,10 @@ fn model_spec(
         .zip(programs)
         .map(|(term, program)| term_spec(term, program));
     let report = &compiled.report;
+    let derivation = match &model.derivation {
+        Some(text) => quote!(::core::option::Option::Some(#text)),
+        None => quote!(::core::option::Option::None),
+    };
     quote! {
         &::wrinkle_runtime::ModelSpec {
             name: #registry_name,
@@ -173,7 +177,7 @@ fn model_spec(
             jet: &[#(#jet_entries),*],
             terms: &[#(#term_specs),*],
             simplification_report: #report,
-            derivation: ::core::option::Option::None,
+            derivation: #derivation,
         }
     }
 }

@@ -49,9 +49,22 @@ pub use syntax::{ModelDeclaration, ModelOutline, ParsedModel, Quadrature, parse_
 /// Parses and validates a model declaration, returning every error found.
 pub fn parse_and_lower(input: TokenStream) -> Result<LoweredModel, syn::Error> {
     match parse_model(input) {
-        ParsedModel::Complete(declaration) => lower_model(&declaration),
+        ParsedModel::Complete(declaration) => derive_and_lower(&declaration),
         ParsedModel::Partial { errors, .. } | ParsedModel::Unnamed { errors } => {
             Err(combine(errors).expect("a parse that stopped has an error"))
+        }
+    }
+}
+
+/// Derives the terms of a declaration's ansatz, if it has one ([`ansatz::derive`]), and lowers
+/// the result; a derived model carries its derivation report.
+pub fn derive_and_lower(declaration: &ModelDeclaration) -> Result<LoweredModel, syn::Error> {
+    match ansatz::derive(declaration)? {
+        None => lower_model(declaration),
+        Some(derived) => {
+            let mut lowered = lower_model(&derived.declaration)?;
+            lowered.derivation = Some(derived.report);
+            Ok(lowered)
         }
     }
 }
@@ -85,7 +98,7 @@ pub fn expand(input: TokenStream) -> TokenStream {
 pub fn expand_with_limits(input: TokenStream, limits: &SimplificationLimits) -> TokenStream {
     let (outline, errors) = match parse_model(input) {
         ParsedModel::Complete(declaration) => {
-            let compiled = lower_model(&declaration)
+            let compiled = derive_and_lower(&declaration)
                 .and_then(|lowered| compile(lowered, limits).map_err(internal_error));
             match compiled {
                 Ok(compiled) => return codegen::generate(&compiled),

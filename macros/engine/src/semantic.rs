@@ -58,6 +58,9 @@ pub struct LoweredModel {
     pub graph: ExpressionGraph,
     /// The terms in declaration order.
     pub terms: Vec<LoweredTerm>,
+    /// The derivation report of a model derived from a microscopic energy
+    /// ([`crate::ansatz::derive`]), `None` for a hand-written one.
+    pub derivation: Option<String>,
 }
 
 impl LoweredModel {
@@ -318,6 +321,15 @@ impl Lowering {
                         terms.push((term, value));
                     }
                 }
+                Item::Average(average) => {
+                    // The derivation replaces every derived term before lowering; one left here
+                    // has no microscopic energy or no ansatz to come from.
+                    declare_in(self, &average.name, Binding::Term);
+                    self.errors.push(syn::Error::new(
+                        average.keyword,
+                        "`average(…)` derives a term from a `microscopic` energy with an `ansatz`, and this model declares no `microscopic` energy",
+                    ));
+                }
             }
         }
         terms
@@ -382,6 +394,7 @@ pub fn lower_model(declaration: &ModelDeclaration) -> Result<LoweredModel, syn::
         jet,
         graph,
         terms,
+        derivation: None,
     })
 }
 
@@ -392,6 +405,7 @@ fn declared_later(items: &[Item]) -> HashMap<String, &'static str> {
         .map(|item| match item {
             Item::Let(binding) => (binding.name.to_string(), "a `let`"),
             Item::Term(term) => (term.name.to_string(), "an energy term"),
+            Item::Average(average) => (average.name.to_string(), "an energy term"),
         })
         .collect()
 }
@@ -407,7 +421,7 @@ fn check_model(
     let has_terms = declaration
         .items
         .iter()
-        .any(|item| matches!(item, Item::Term(_)));
+        .any(|item| matches!(item, Item::Term(_) | Item::Average(_)));
     if !has_terms {
         errors.push(syn::Error::new(
             declaration.name.span(),

@@ -25,6 +25,13 @@ use syn::parse::{ParseStream, Parser};
 use syn::{Attribute, Ident, LitStr, Token, bracketed, parenthesized};
 use wrinkle_contract::Derivative;
 
+mod ansatz;
+
+pub use ansatz::{
+    AnsatzDeclaration, AverageDeclaration, AverageOptions, FieldExpansion, HarmonicPart,
+    MicroscopicDeclaration,
+};
+
 mod keyword {
     syn::custom_keyword!(model);
     syn::custom_keyword!(fields);
@@ -238,6 +245,9 @@ pub enum Item {
     Let(LetDeclaration),
     /// An `energy` term.
     Term(TermDeclaration),
+    /// A derived term, `energy name = average(term, …);`: replaced by an ordinary term by the
+    /// derivation (`crate::ansatz`) before lowering.
+    Average(AverageDeclaration),
 }
 
 /// A whole `model` declaration.
@@ -259,6 +269,10 @@ pub struct ModelDeclaration {
     pub parameters: Vec<ParameterDeclaration>,
     /// Lets and energy terms in order.
     pub items: Vec<Item>,
+    /// The microscopic energy derived terms are averaged from, if any.
+    pub microscopic: Option<Box<MicroscopicDeclaration>>,
+    /// The ansatz of derived terms, if any.
+    pub ansatz: Option<Box<AnsatzDeclaration>>,
     /// Span of the model body braces.
     pub body: Span,
     /// Errors detected while parsing that did not prevent parsing the rest.
@@ -283,9 +297,21 @@ impl ModelDeclaration {
             attributes: self.attributes.clone(),
             name: self.name.clone(),
             registry_name: Some(self.registry_name.value()),
-            parameters: self.parameters.clone(),
+            parameters: with_microscopic(&self.microscopic, &self.parameters),
         }
     }
+}
+
+/// A derived model's parameters: its microscopic energy's, then its own.
+fn with_microscopic(
+    microscopic: &Option<Box<MicroscopicDeclaration>>,
+    parameters: &[ParameterDeclaration],
+) -> Vec<ParameterDeclaration> {
+    let mut all = microscopic
+        .as_ref()
+        .map_or_else(Vec::new, |m| m.parameters.clone());
+    all.extend(parameters.iter().cloned());
+    all
 }
 
 /// The parts of a model that declare the generated type — documentation, attributes, name,
@@ -356,6 +382,8 @@ struct PartialModel {
     fields: Vec<FieldDeclaration>,
     parameters: Vec<ParameterDeclaration>,
     items: Vec<Item>,
+    microscopic: Option<Box<MicroscopicDeclaration>>,
+    ansatz: Option<Box<AnsatzDeclaration>>,
     body: Option<Span>,
     /// Every error so far, in source order.
     errors: Vec<syn::Error>,
@@ -491,8 +519,15 @@ impl PartialModel {
         Ok(())
     }
 
-    /// `let name = value;` or `energy name [rule] = value;`.
+    /// `let name = value;`, `energy name [rule] = value;`, `energy name [rule] = average(…);`,
+    /// or a `microscopic` or `ansatz` block.
     fn parse_item(&mut self, content: ParseStream) -> syn::Result<()> {
+        if content.peek(ansatz::keyword::microscopic) {
+            return self.parse_microscopic(content);
+        }
+        if content.peek(ansatz::keyword::ansatz) && content.peek2(syn::token::Brace) {
+            return self.parse_ansatz(content);
+        }
         if content.peek(Token![let]) {
             content.parse::<Token![let]>()?;
             let name: Ident = content.parse()?;
@@ -505,6 +540,12 @@ impl PartialModel {
             let name: Ident = content.parse()?;
             let quadrature = self.parse_quadrature(content)?;
             content.parse::<Token![=]>()?;
+            if content.peek(ansatz::keyword::average) && content.peek2(syn::token::Paren) {
+                let item = self.parse_average(content, name, quadrature)?;
+                content.parse::<Token![;]>()?;
+                self.items.push(item);
+                return Ok(());
+            }
             let value = parse_expression(content, &mut self.errors)?;
             content.parse::<Token![;]>()?;
             self.items.push(Item::Term(TermDeclaration {
@@ -559,7 +600,7 @@ impl PartialModel {
                 attributes: self.attributes,
                 name,
                 registry_name: self.registry_name.map(|name| name.value()),
-                parameters: self.parameters,
+                parameters: with_microscopic(&self.microscopic, &self.parameters),
             };
             return ParsedModel::Partial {
                 outline,
@@ -576,6 +617,8 @@ impl PartialModel {
             fields: self.fields,
             parameters: self.parameters,
             items: self.items,
+            microscopic: self.microscopic,
+            ansatz: self.ansatz,
             body: self.body.expect(parsed),
             deferred_errors: self.errors,
         })
