@@ -8,6 +8,11 @@
 
 use wrinkle_runtime::{EnergyModel, ModelSpec};
 
+#[doc(hidden)]
+pub use wrinkle_macros as __macros;
+
+pub mod microscopic;
+
 /// Something to do with a model chosen at run time: `visit` is monomorphised per model.
 pub trait ModelVisitor {
     /// What the visit returns.
@@ -49,6 +54,8 @@ registry! {
     beam_full::BeamFull,
     beam_envelope::BeamEnvelope,
     beam_complex_envelope::BeamComplexEnvelope,
+    derived_reference_envelope::DerivedReferenceEnvelope,
+    derived_complex_envelope::DerivedComplexEnvelope,
 }
 
 /// Names of every registered model.
