@@ -56,6 +56,7 @@ registry! {
     beam_complex_envelope::BeamComplexEnvelope,
     derived_reference_envelope::DerivedReferenceEnvelope,
     derived_complex_envelope::DerivedComplexEnvelope,
+    two_harmonic_envelope::TwoHarmonicEnvelope,
 }
 
 /// Names of every registered model.
