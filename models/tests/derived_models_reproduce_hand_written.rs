@@ -21,6 +21,12 @@
 //!   the 1D ansatz gives (14) written by hand,
 //!   $`6EIQ^2v_1'^2 + EIQ^4v_1^2 + \tfrac{ES}2(u_0' + v_1'^2 + Q^2v_1^2)^2 + cv_1^2 + \tfrac32c_3v_1^4`$,
 //!   to 1e-12 relative.
+//! * `two_harmonic_model_leaves_the_second_deflection_harmonic_unforced`: in
+//!   `two-harmonic-envelope`, at random states with $`w_2 = 0`$ (and its gradient), the residual
+//!   of $`w_2`$ is exactly zero (the energy is even in $`w_2`$: the symmetry of the model's doc);
+//!   with the in-plane second harmonics zero too, its bending equals the reference's and its
+//!   membrane energy exceeds the reference's by the non-negative energy of the unrelaxed strain
+//!   harmonics.
 //! * `derived_models_carry_their_derivation`: the derived models publish their provenance and
 //!   derivation in `ModelSpec::derivation`; hand-written ones publish none.
 
@@ -28,6 +34,7 @@ use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use wrinkle_models::{
     ComplexEnvelope, DerivedComplexEnvelope, DerivedReferenceEnvelope, ReferenceEnvelope,
+    TwoHarmonicEnvelope,
 };
 use wrinkle_runtime::{Derivative, EnergyModel};
 
@@ -233,6 +240,57 @@ fn beam_ansatz_gives_equation_14() {
         assert!(relative_difference(&[sum.energy], &[truth.energy]) < 1e-12);
         assert!(relative_difference(&sum.residual, &truth.residual) < 1e-12);
         assert!(relative_difference(&sum.tangent, &truth.tangent) < 1e-12);
+    }
+}
+
+#[test]
+fn two_harmonic_model_leaves_the_second_deflection_harmonic_unforced() {
+    type Two = TwoHarmonicEnvelope;
+    let spec = Two::SPEC;
+    let two: Two = with_parameters(0.3);
+    let reference: ReferenceEnvelope = with_parameters(0.3);
+    let field = |name: &str| spec.field_index(name).unwrap();
+    let mut random = StdRng::seed_from_u64(22);
+    for _ in 0..20 {
+        let mut jet = random_jet::<Two>(&mut random);
+        for (k, entry) in spec.jet.iter().enumerate() {
+            if entry.field == field("w2") {
+                jet[k] = 0.0;
+            }
+        }
+        for term in ["membrane", "bending"] {
+            let evaluated = evaluate(&two, term, &jet);
+            for (k, entry) in spec.jet.iter().enumerate() {
+                if entry.field == field("w2") {
+                    assert_eq!(evaluated.residual[k], 0.0, "{term}: w2 is forced");
+                }
+            }
+        }
+        // In-plane second harmonics zero too: compare with the reference on (u, v, w).
+        let in_plane = ["u2r", "u2i", "v2r", "v2i"].map(field);
+        for (k, entry) in spec.jet.iter().enumerate() {
+            if in_plane.contains(&entry.field) {
+                jet[k] = 0.0;
+            }
+        }
+        let reduced: Vec<f64> = ReferenceEnvelope::SPEC
+            .jet
+            .iter()
+            .map(|entry| {
+                let name = ReferenceEnvelope::SPEC.fields[entry.field];
+                let position = spec
+                    .jet
+                    .iter()
+                    .position(|e| spec.fields[e.field] == name && e.derivative == entry.derivative);
+                jet[position.unwrap()]
+            })
+            .collect();
+        let bending = evaluate(&two, "bending", &jet).energy;
+        let expected = evaluate(&reference, "bending", &reduced).energy;
+        assert!((bending - expected).abs() <= 1e-12 * expected.abs());
+        let membrane = evaluate(&two, "membrane", &jet).energy;
+        let paper = evaluate(&reference, "membrane", &reduced).energy;
+        assert!(membrane >= paper * (1.0 - 1e-12), "{membrane} < {paper}");
     }
 }
 
