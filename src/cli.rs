@@ -114,7 +114,12 @@ pub enum Command {
         table_1: bool,
     },
     /// List the registered models with their fields and parameters.
-    Models,
+    Models {
+        /// Print one model in full: its terms and, for a model derived from a microscopic
+        /// energy, its provenance and derived energy.
+        #[arg(long, value_name = "NAME")]
+        show: Option<String>,
+    },
     /// Print the effective scene (defaults, file and overrides merged) as TOML.
     Scene {
         /// Scene and overrides.
@@ -218,7 +223,8 @@ pub fn execute(command: &Command) -> Result<(), Error> {
             json,
             table_1,
         } => analytic(&scene.resolve()?, *json, *table_1),
-        Command::Models => print_stdout(&models_listing(&commands::models())),
+        Command::Models { show: None } => print_stdout(&models_listing(&commands::models())),
+        Command::Models { show: Some(name) } => print_stdout(&commands::model_details(name)?),
         Command::Scene { scene } => print_stdout(&scene.resolve()?.to_toml_string()),
     }
 }

@@ -59,3 +59,38 @@ pub fn models() -> Vec<(String, String, Vec<String>, Vec<String>)> {
         })
         .collect()
 }
+
+/// `wrinkle models --show NAME`: one model's description, fields, parameters and terms, and
+/// its derivation (provenance, derived energy in DSL syntax, sizes) or that it is hand-written.
+pub fn model_details(name: &str) -> Result<String, Error> {
+    let catalogue = wrinkle_models::catalogue();
+    let Some(spec) = catalogue.iter().find(|spec| spec.name == name) else {
+        return Err(Error::Usage(format!(
+            "no model `{name}` (registered: {})",
+            wrinkle_models::names().join(", ")
+        )));
+    };
+    let fields: Vec<String> = spec
+        .fields
+        .iter()
+        .zip(spec.field_roles)
+        .map(|(f, r)| format!("{f} [{}]", r.name()))
+        .collect();
+    let terms: Vec<String> = spec
+        .terms
+        .iter()
+        .map(|t| format!("{} ({:?} quadrature)", t.name, t.quadrature))
+        .collect();
+    let derivation = spec.derivation.map_or_else(
+        || "hand-written (not derived by the DSL)\n".to_string(),
+        |text| text.to_string(),
+    );
+    Ok(format!(
+        "{}\n    {}\n    fields: {}\n    parameters: {}\n    terms: {}\n{derivation}",
+        spec.name,
+        spec.description,
+        fields.join(", "),
+        spec.parameters.join(", "),
+        terms.join(", ")
+    ))
+}
