@@ -206,7 +206,9 @@ impl PartialModel {
             let word: keyword::slow_derivatives = body.parse()?;
             body.parse::<Token![:]>()?;
             let order = self.parse_integer(body, "the order of slow derivatives")?;
-            if ansatz.slow_derivatives.replace(order).is_some() {
+            if let Some(order) = order
+                && ansatz.slow_derivatives.replace(order).is_some()
+            {
                 self.errors.push(repeated(word.span, "slow_derivatives"));
             }
         } else {
@@ -217,18 +219,25 @@ impl PartialModel {
                 )
             })?;
             body.parse::<Token![=]>()?;
-            let mut parts = vec![self.parse_harmonic_part(body)?];
+            // A part whose harmonic index is invalid is reported and left out (no cascade).
+            let mut parts: Vec<HarmonicPart> =
+                self.parse_harmonic_part(body)?.into_iter().collect();
             while body.peek(Token![+]) {
                 body.parse::<Token![+]>()?;
-                parts.push(self.parse_harmonic_part(body)?);
+                parts.extend(self.parse_harmonic_part(body)?);
             }
             ansatz.expansions.push(FieldExpansion { field, parts });
         }
         Ok(())
     }
 
-    /// A non-negative integer literal; anything else is collected as an error about `what`.
-    fn parse_integer(&mut self, input: ParseStream, what: &str) -> syn::Result<(u32, Span)> {
+    /// A non-negative integer literal; anything else is collected as an error about `what`
+    /// (then `None`).
+    fn parse_integer(
+        &mut self,
+        input: ParseStream,
+        what: &str,
+    ) -> syn::Result<Option<(u32, Span)>> {
         let literal: syn::Lit = input.parse().map_err(|error| {
             syn::Error::new(error.span(), format!("expected an integer: {what}"))
         })?;
@@ -237,28 +246,26 @@ impl PartialModel {
             syn::Lit::Int(integer) => integer.base10_parse::<u32>().ok(),
             _ => None,
         };
-        Ok(match value {
-            Some(value) => (value, span),
-            None => {
-                self.errors.push(syn::Error::new(
-                    span,
-                    format!("{what} must be a non-negative integer literal"),
-                ));
-                (1, span)
-            }
-        })
+        if value.is_none() {
+            self.errors.push(syn::Error::new(
+                span,
+                format!("{what} must be a non-negative integer literal"),
+            ));
+        }
+        Ok(value.map(|value| (value, span)))
     }
 
-    /// `field` or `2 Re(coefficient e^{m i Q e.X})`.
-    fn parse_harmonic_part(&mut self, body: ParseStream) -> syn::Result<HarmonicPart> {
+    /// `field` or `2 Re(coefficient e^{m i Q e.X})`; `None` when the harmonic index is invalid
+    /// (reported).
+    fn parse_harmonic_part(&mut self, body: ParseStream) -> syn::Result<Option<HarmonicPart>> {
         if body.peek(Ident) {
             let real: Ident = body.parse()?;
-            return Ok(HarmonicPart {
+            return Ok(Some(HarmonicPart {
                 harmonic: 0,
                 harmonic_span: real.span(),
                 real,
                 imaginary: None,
-            });
+            }));
         }
         let two: syn::LitInt = body.parse().map_err(|error| {
             syn::Error::new(
@@ -283,31 +290,34 @@ impl PartialModel {
         inside.parse::<Token![^]>()?;
         let phase;
         braced!(phase in inside);
-        let (harmonic, harmonic_span) = self.parse_phase(&phase)?;
+        let index = self.parse_phase(&phase)?;
         if !inside.is_empty() {
             return Err(inside.error("expected `)` after the phase `e^{m i Q e.X}`"));
         }
-        Ok(HarmonicPart {
+        Ok(index.map(|(harmonic, harmonic_span)| HarmonicPart {
             harmonic,
             harmonic_span,
             real,
             imaginary,
-        })
+        }))
     }
 
-    /// `m i Q e.X` (or `i Q e.X`, `m = 1`): the harmonic index.
-    fn parse_phase(&mut self, phase: ParseStream) -> syn::Result<(u32, Span)> {
-        let (harmonic, span) = if phase.peek(syn::LitInt) || phase.peek(syn::LitFloat) {
-            let (value, span) = self.parse_integer(phase, "the harmonic index")?;
-            if value == 0 {
+    /// `m i Q e.X` (or `i Q e.X`, `m = 1`): the harmonic index, `None` if it is not a positive
+    /// integer (reported).
+    fn parse_phase(&mut self, phase: ParseStream) -> syn::Result<Option<(u32, Span)>> {
+        let index = if phase.peek(syn::LitInt) || phase.peek(syn::LitFloat) {
+            let index = self.parse_integer(phase, "the harmonic index")?;
+            if let Some((0, span)) = index {
                 self.errors.push(syn::Error::new(
                     span,
                     "harmonic index 0: the zeroth harmonic is written as a plain field, `w = w0 + …`",
                 ));
+                None
+            } else {
+                index
             }
-            (value.max(1), span)
         } else {
-            (1, phase.span())
+            Some((1, phase.span()))
         };
         let unit: Ident = phase.parse()?;
         let wavenumber_follows = unit == "iQ";
@@ -332,7 +342,7 @@ impl PartialModel {
                 "expected `e.X` (the phase is m Q e·X)",
             ));
         }
-        Ok((harmonic, span))
+        Ok(index)
     }
 
     /// After `energy name [rule] =`, with `average` peeked: the derived term.
