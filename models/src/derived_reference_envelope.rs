@@ -2,7 +2,8 @@
 //! DSL** from the Kirchhoff FvK plate ([`crate::from_kirchhoff_plate`]) instead of by hand: the
 //! check that the automated derivation reproduces the hand-written `reference-envelope`
 //! (`models/tests/derived_models_reproduce_hand_written.rs`: same energy, residual and tangent
-//! at random states to 1e-12; same critical load and path on the default scene).
+//! at random states to 1e-12; `models/tests/derived_reference_envelope_path.rs`: same critical
+//! load and path on the default scene to 1e-9).
 //!
 //! Ansatz (THEORY.md §3): $`u = u_0`$, $`v = v_0`$ (no in-plane harmonics), and a real envelope of
 //! the first harmonic, $`w = 2\,\mathrm{Re}(w_1 e^{iQ\,\mathbf e\cdot\mathbf X})`$ with

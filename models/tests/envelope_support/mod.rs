@@ -13,7 +13,7 @@
 use std::f64::consts::PI;
 use std::sync::Arc;
 use wrinkle_runtime::EnergyModel;
-use wrinkle_runtime::fem::{DirichletCondition, EdgeTraction, Loads, Mesh};
+use wrinkle_runtime::fem::{BodyLoad, DirichletCondition, EdgeTraction, Loads, Mesh};
 use wrinkle_runtime::linear::factor::SparseFactorization;
 use wrinkle_runtime::problem::Problem;
 use wrinkle_runtime::solve::buckling::{LinearBuckling, LinearBucklingOptions, linear_buckling};
@@ -85,6 +85,17 @@ fn fixed(edge: &str, field: usize) -> DirichletCondition {
 
 /// Example 1 on a uniform `nx × ny` Q8 mesh (see the module documentation).
 pub fn example1<M: EnergyModel>(model: M, nx: usize, ny: usize) -> Problem<M> {
+    example1_with_body_loads(model, nx, ny, &[])
+}
+
+/// [`example1`] with `body_loads` (e.g. the paper's uniform load on the envelope, an
+/// imperfection).
+pub fn example1_with_body_loads<M: EnergyModel>(
+    model: M,
+    nx: usize,
+    ny: usize,
+    body_loads: &[BodyLoad],
+) -> Problem<M> {
     let spec = M::SPEC;
     let (u, v) = (
         spec.field_index("u").unwrap(),
@@ -119,6 +130,7 @@ pub fn example1<M: EnergyModel>(model: M, nx: usize, ny: usize) -> Problem<M> {
     let mesh = Arc::new(Mesh::rectangle(LX, LY, nx, ny, 1.0).unwrap());
     let loads = Loads {
         tractions,
+        body_loads: body_loads.to_vec(),
         ..Loads::default()
     };
     Problem::new(model, mesh, &conditions, &loads).unwrap()
