@@ -3,7 +3,7 @@
 //! automated.
 //!
 //! A model that declares a `microscopic` energy, an `ansatz` and derived terms
-//! `energy name = average(term, …);` (`docs/dsl.md`) is rewritten by [`derive`] into an ordinary
+//! `energy name = average(term, …);` (`docs/dsl.md`) is rewritten by [`derive()`] into an ordinary
 //! declaration — the microscopic parameters first among its parameters, each derived term an
 //! ordinary `energy` item — that the rest of the pipeline lowers, differentiates, simplifies and
 //! generates like a hand-written one. For each derived term:

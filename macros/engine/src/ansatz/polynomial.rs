@@ -12,7 +12,7 @@
 //! * products ([`Polynomial::times`]), with $`i^2 = -1`$ in the coefficients;
 //! * [`Polynomial::zeroth_harmonic`]: the monomials whose harmonic indices sum to 0 — the
 //!   period average (Parseval, $`(fg)_0 = \sum_m f_m g_{-m}`$);
-//! * truncation by the order of slow derivatives ([`Polynomial::slow_order`]: derivatives of
+//! * truncation by the order of slow derivatives ([`Monomial::slow_order`]: derivatives of
 //!   non-zero harmonics — the envelopes — count, those of the zeroth harmonics, the macroscopic
 //!   fields, do not), applied during products so that nothing beyond the order is ever formed;
 //! * [`Polynomial::integrate_by_parts`] of monomials with a second slow derivative;
