@@ -263,13 +263,14 @@ fn run_point(
     progress.done += 1;
     let label = format!("bench [{}/{}] {model}", progress.done, progress.total);
     crate::output::message_line(&format!(
-        "{label} {} {}: {}×{}, N = {}, ε = {:.0e}{}",
+        "{label} {} {}: {}×{}{}{}",
         sweep.as_str(),
         settings.method.label(),
         settings.nx,
         settings.ny,
-        settings.order,
-        settings.series_tolerance,
+        settings
+            .method
+            .series_settings(settings.order, settings.series_tolerance),
         wavenumber.map_or(String::new(), |q| format!(", Q = {q:.6} fixed")),
     ));
     let begin = Instant::now();
@@ -443,6 +444,15 @@ fn write_bench(scene: &Scene, bench: &Bench, directory: &Path) -> Result<(), Err
     Ok(())
 }
 
+/// A cell of the order or the series tolerance in `bench.md`: `–` for Riks, which has neither.
+fn series_cell(row: &BenchRow, text: String) -> String {
+    if row.settings.method.uses_series() {
+        text
+    } else {
+        "–".into()
+    }
+}
+
 /// Milliseconds per accepted step of a path total, `–` when unknown.
 fn per_step(total: Option<f64>, steps: Option<usize>) -> String {
     match (total, steps) {
@@ -497,13 +507,14 @@ fn reference_line(row: &BenchRow, missing: &str) -> String {
     let m = &row.measured;
     let value = |v: Option<f64>| v.map_or(missing.to_string(), |v| format!("{v:.8e}"));
     format!(
-        "{}: {}, {}×{}, N = {}, ε = {:.0e}: λ_c = {}, λ(a/h=1) = {}, a/h(1.1 λ_c) = {}",
+        "{}: {}, {}×{}{}: λ_c = {}, λ(a/h=1) = {}, a/h(1.1 λ_c) = {}",
         row.model,
         row.settings.method.label(),
         row.settings.nx,
         row.settings.ny,
-        row.settings.order,
-        row.settings.series_tolerance,
+        row.settings
+            .method
+            .series_settings(row.settings.order, row.settings.series_tolerance),
         value(m.critical_load),
         value(m.load_at_amplitude_1),
         value(m.amplitude_at_1_1),
@@ -530,8 +541,8 @@ pub fn bench_markdown(bench: &Bench) -> String {
             row.settings.method.label().to_string(),
             format!("{}×{}", row.settings.nx, row.settings.ny),
             row.dofs.map_or("–".into(), |d| d.to_string()),
-            row.settings.order.to_string(),
-            format!("{:.0e}", row.settings.series_tolerance),
+            series_cell(row, row.settings.order.to_string()),
+            series_cell(row, format!("{:.0e}", row.settings.series_tolerance)),
             steps.map_or("–".into(), |s| s.to_string()),
             row.factorizations.map_or("–".into(), |s| s.to_string()),
             time(row.time_total),

@@ -124,3 +124,29 @@ fn fraction_is_clamped_and_safe() {
     let degenerate = ProgressTarget::new(Quantity::biaxial_load(), 1.0, 1.0);
     assert_eq!(degenerate.fraction(1.0), 0.0);
 }
+
+/// With a critical load the bar does not sit empty while the amplitude barely moves: its first
+/// half follows the load up to λ_c, its second half the amplitude; the text gives λ/λ_c first.
+#[test]
+fn the_bar_follows_the_load_up_to_the_critical_load() {
+    let target = amplitude_target().with_critical_load(0.09);
+    assert_eq!(target.fraction_at_load(0.0, 0.0), 0.0);
+    assert!((target.fraction_at_load(0.0, 0.045) - 0.25).abs() < 1e-12);
+    assert!((target.fraction_at_load(0.0, 0.09) - 0.5).abs() < 1e-12);
+    assert!((target.fraction_at_load(2.0, 0.1) - 0.75).abs() < 1e-12);
+    assert_eq!(target.fraction_at_load(4.0, 0.12), 1.0);
+    // Without a critical load: the amplitude alone.
+    assert_eq!(amplitude_target().fraction_at_load(2.0, 0.0), 0.5);
+
+    let captured = Captured::default();
+    let progress = Progress::new("wrinkle run", target, captured.sink(Duration::ZERO));
+    progress.update_at_load(0.01, 0.045, "step 3");
+    let text = captured.text();
+    assert!(
+        text.lines()
+            .nth(1)
+            .unwrap()
+            .contains("λ/λ_c = 0.500, max |w| / h = 0.01000 of 4.000 (0 %), step 3"),
+        "{text}"
+    );
+}

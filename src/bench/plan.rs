@@ -52,6 +52,21 @@ impl Method {
         }
     }
 
+    /// Whether the method has an order $`N`$ and a series tolerance $`\varepsilon`$ (the ANM
+    /// variants; Riks has neither).
+    pub fn uses_series(self) -> bool {
+        !matches!(self, Method::Riks)
+    }
+
+    /// `", N = 15, ε = 1e-6"` for an ANM method, nothing for Riks (the terminal and `bench.md`).
+    pub fn series_settings(self, order: usize, series_tolerance: f64) -> String {
+        if self.uses_series() {
+            format!(", N = {order}, ε = {series_tolerance:.0e}")
+        } else {
+            String::new()
+        }
+    }
+
     /// Name in the plot's legend.
     pub fn label(self) -> &'static str {
         match self {
@@ -171,5 +186,18 @@ impl Plan {
             .chain(sweep(Sweep::Tolerance, &anm, tolerances.collect()))
             .filter(|(_, settings)| *settings != reference)
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Method;
+
+    /// Riks has no order and no series tolerance: none is listed for it.
+    #[test]
+    fn only_the_anm_lists_its_order_and_tolerance() {
+        assert_eq!(Method::AnmPade.series_settings(15, 1e-6), ", N = 15, ε = 1e-6");
+        assert_eq!(Method::Anm.series_settings(20, 1e-8), ", N = 20, ε = 1e-8");
+        assert_eq!(Method::Riks.series_settings(15, 1e-6), "");
     }
 }

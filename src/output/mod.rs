@@ -25,6 +25,7 @@
 //! * [`grid`] — [`GridField`]: a field sampled on a regular grid.
 //! * [`vtu`] — [`write_fields_vtu`] (Q8 mesh, VTK cell type 23) and [`write_surface_vtu`], both
 //!   with [`FieldData`] (the load and its unit) and extra [`PointArray`]s.
+//! * [`pvd`] — [`write_pvd`]: a ParaView collection of `.vtu` files over the load.
 //! * [`plots`] — [`plot_response`], [`plot_comparison`], [`plot_profiles`],
 //!   [`plot_wrinkle_map`].
 //! * [`report`] — [`write_report`]: `report.html` with the summary, warnings, plots and scene.
@@ -105,6 +106,7 @@ pub mod grid;
 pub mod path_table;
 pub mod plots;
 pub mod progress;
+pub mod pvd;
 pub mod quantity;
 pub mod report;
 pub mod run_directory;
@@ -115,10 +117,11 @@ pub use grid::GridField;
 pub use path_table::{PATH_CSV_COLUMNS, PathPoint, write_path_csv, write_path_csv_to};
 pub use plots::{
     ClosedFormCurve, FigureLayout, LoadMarker, MarkerKind, PanelLayout, PlotOutput, Profile,
-    ProfilePlot, Response, ResponsePoint, WrinkleMap, plot_comparison, plot_profiles,
-    plot_response, plot_wrinkle_map,
+    ProfilePlot, ReferenceLevel, Response, ResponsePoint, WrinkleMap, plot_comparison,
+    plot_profiles, plot_profiles_with_level, plot_response, plot_wrinkle_map,
 };
 pub use progress::{Progress, ProgressSink, ProgressTarget, SearchProgress, message_line};
+pub use pvd::{SeriesEntry, write_pvd};
 pub use quantity::Quantity;
 pub use report::{
     Report, ReportFigure, Severity, SummaryRow, SummaryTable, Warning, format_rows, write_report,

@@ -15,7 +15,9 @@ pub struct PathPoint {
     pub interior: bool,
     /// Load parameter $`\lambda`$.
     pub lambda: f64,
-    /// Membrane force $`N_x = -\lambda`$ for the biaxial load, `None` otherwise.
+    /// Membrane force $`N_x = -\lambda`$ for the biaxial load, `None` otherwise (a negative
+    /// zero is serialised as `0`).
+    #[serde(serialize_with = "serialize_without_negative_zero")]
     pub n_x: Option<f64>,
     /// Maximum physical wrinkle amplitude over the domain (mm): $`\max|w|`$ for a plate,
     /// $`2\max|w_\text{env}|`$ (or $`2\max|w_1|`$) for envelope models.
@@ -52,7 +54,7 @@ pub const PATH_CSV_COLUMNS: [&str; 10] = [
 
 /// Writes the path as CSV to the file `path` (replaced atomically): a header line with
 /// [`PATH_CSV_COLUMNS`], then one line per point. Numbers are written so that they parse back to
-/// the same `f64` bit for bit; booleans as `true`/`false`; `None` as an empty cell.
+/// the same `f64` bit for bit (a negative zero as `0`); booleans as `true`/`false`; `None` as an empty cell.
 pub fn write_path_csv(path: &Path, points: &[PathPoint]) -> io::Result<()> {
     write_atomically(path, |writer| write_path_csv_to(writer, points))
 }
@@ -81,11 +83,23 @@ pub fn write_path_csv_to(mut writer: impl Write, points: &[PathPoint]) -> io::Re
     Ok(())
 }
 
+/// Serialises an optional number with $`-0`$ written as `0` (e.g. $`N_X = -\lambda`$ at
+/// $`\lambda = 0`$).
+fn serialize_without_negative_zero<S: serde::Serializer>(
+    value: &Option<f64>,
+    serializer: S,
+) -> Result<S::Ok, S::Error> {
+    serde::Serialize::serialize(&value.map(|number| number + 0.0), serializer)
+}
+
 /// Shortest representation that parses back to the same `f64`: plain decimal for moderate
-/// magnitudes, scientific notation for very small or very large ones.
+/// magnitudes, scientific notation for very small or very large ones; both zeros are written
+/// `0` (a negative zero, e.g. $`N_X = -\lambda`$ at $`\lambda = 0`$, is not worth a sign).
 fn format_number(value: f64) -> String {
     let magnitude = value.abs();
-    if value == 0.0 || !value.is_finite() || (1e-4..1e7).contains(&magnitude) {
+    if value == 0.0 {
+        "0".to_string()
+    } else if !value.is_finite() || (1e-4..1e7).contains(&magnitude) {
         format!("{value}")
     } else {
         format!("{value:e}")
@@ -100,7 +114,6 @@ mod tests {
     fn numbers_round_trip_exactly() {
         for value in [
             0.0,
-            -0.0,
             0.09,
             1.0 / 3.0,
             1e-300,
@@ -117,5 +130,25 @@ mod tests {
         }
         assert_eq!(format_number(0.09), "0.09");
         assert_eq!(format_number(1e-9), "1e-9");
+    }
+
+    /// $`N_X = -\lambda`$ at $`\lambda = 0`$ is written `0`, not `-0`, in the CSV and the JSON.
+    #[test]
+    fn negative_zero_is_written_as_zero() {
+        assert_eq!(format_number(-0.0), "0");
+        let point = super::PathPoint {
+            step: 0,
+            interior: false,
+            lambda: 0.0,
+            n_x: Some(-0.0),
+            max_amplitude: 0.0,
+            max_amplitude_over_h: 0.0,
+            centre_amplitude_over_h: 0.0,
+            residual: 0.0,
+            elliptic: true,
+            closed_form_amplitude_over_h: None,
+        };
+        let json = serde_json::to_string(&point).unwrap();
+        assert!(json.contains("\"n_x\":0.0"), "{json}");
     }
 }

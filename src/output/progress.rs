@@ -3,12 +3,15 @@
 //! * [`Progress`] follows one quantity toward a target (the amplitude $`\max|w|/h`$ toward the
 //!   requested amplitude, or the load toward a maximum load): the bar's position is
 //!   $`(v - v_0)/(v_\text{target} - v_0)`$ and the text shows the value and the target with
-//!   their unit.
+//!   their unit. With a critical load ([`ProgressTarget::with_critical_load`]) the first half
+//!   of the bar follows the load up to $`\lambda_c`$ (where the amplitude barely moves) and
+//!   the second half the amplitude, so the bar moves from the first step.
 //! * [`SearchProgress`] counts the evaluations of a search whose end is not known in advance
 //!   (`wavenumber search: evaluation 7, Q = 0.2354/mm, λ_c = 0.08952 N/mm`).
 //!
 //! Where the reports go ([`ProgressSink`]): an [`indicatif`] bar or spinner when standard error is
-//! a terminal; plain lines when it is not (logs, pipes, CI), at most one every
+//! a terminal (the label and the text on one line, the bar below it, so that nothing is cut at 80
+//! columns); plain lines when it is not (logs, pipes, CI), at most one every
 //! [`DEFAULT_LINE_INTERVAL`] plus one at the start and one at the end; nothing when `quiet`.
 //! Write errors (a closed pipe) are ignored: progress never stops a computation.
 
@@ -28,7 +31,7 @@ pub fn message_line(text: &str) {
 }
 
 /// Shortest time between two plain progress lines (not counting the start and end lines).
-pub const DEFAULT_LINE_INTERVAL: Duration = Duration::from_secs(5);
+pub const DEFAULT_LINE_INTERVAL: Duration = Duration::from_secs(2);
 
 /// Resolution of the bar (positions per full bar); an implementation detail, never shown.
 const BAR_RESOLUTION: u64 = 10_000;
@@ -93,6 +96,8 @@ pub struct ProgressTarget {
     pub start: f64,
     /// Value at which the work is done (the full bar).
     pub target: f64,
+    /// Critical load $`\lambda_c`$, when the bar's first half follows the load up to it.
+    pub critical_load: Option<f64>,
 }
 
 impl ProgressTarget {
@@ -102,6 +107,26 @@ impl ProgressTarget {
             quantity,
             start,
             target,
+            critical_load: None,
+        }
+    }
+
+    /// The first half of the bar follows the load $`\lambda`$ from 0 to `critical_load`, the
+    /// second half the quantity from `start` to `target` (see [`Self::fraction_at_load`]).
+    pub fn with_critical_load(mut self, critical_load: f64) -> Self {
+        self.critical_load = Some(critical_load).filter(|l| l.is_finite() && *l > 0.0);
+        self
+    }
+
+    /// Fraction of the way at `value` and load `load`:
+    /// $`\tfrac12\min(\lambda/\lambda_c, 1) + \tfrac12 f(v)`$ with a critical load, $`f(v)`$
+    /// ([`Self::fraction`]) without.
+    pub fn fraction_at_load(&self, value: f64, load: f64) -> f64 {
+        match self.critical_load {
+            Some(critical) if load.is_finite() => {
+                0.5 * (load / critical).clamp(0.0, 1.0) + 0.5 * self.fraction(value)
+            }
+            _ => self.fraction(value),
         }
     }
 
@@ -251,8 +276,9 @@ impl Progress {
             let bar =
                 ProgressBar::with_draw_target(Some(BAR_RESOLUTION), ProgressDrawTarget::stderr());
             bar.set_style(
+                // Two lines: the text is never cut by the bar's width on an 80-column terminal.
                 ProgressStyle::with_template(
-                    "{prefix:.bold} [{bar:30.cyan/blue}] [{elapsed}] {wide_msg}",
+                    "{prefix:.bold} {wide_msg}\n  [{bar:50.cyan/blue}] {percent:>3} % [{elapsed}]",
                 )
                 .unwrap_or_else(|_| ProgressStyle::default_bar())
                 .progress_chars("=> "),
@@ -284,8 +310,21 @@ impl Progress {
     /// The followed quantity now has `value`; `detail` is shown after it (e.g.
     /// `"step 7, λ = 0.09121 N/mm"`).
     pub fn update(&self, value: f64, detail: &str) {
+        self.show(self.target.fraction(value), value, None, detail);
+    }
+
+    /// [`Self::update`] at load `load`: with a critical load
+    /// ([`ProgressTarget::with_critical_load`]) the bar follows the load up to it, and the text
+    /// gives $`\lambda/\lambda_c`$ first.
+    pub fn update_at_load(&self, value: f64, load: f64, detail: &str) {
+        let ratio = self.target.critical_load.map(|critical| load / critical);
+        self.show(self.target.fraction_at_load(value, load), value, ratio, detail);
+    }
+
+    fn show(&self, fraction: f64, value: f64, ratio: Option<f64>, detail: &str) {
         let describe = || {
-            let mut text = self.target.describe(value);
+            let mut text = ratio.map_or(String::new(), |r| format!("λ/λ_c = {r:.3}, "));
+            text.push_str(&self.target.describe(value));
             if !detail.is_empty() {
                 text.push_str(", ");
                 text.push_str(detail);
@@ -295,7 +334,7 @@ impl Progress {
         match &self.reporter.output {
             Output::Quiet => {}
             Output::Bar(bar) => {
-                bar.set_position((self.target.fraction(value) * BAR_RESOLUTION as f64) as u64);
+                bar.set_position((fraction * BAR_RESOLUTION as f64) as u64);
                 bar.set_message(describe());
             }
             Output::Lines { .. } => self.reporter.periodic_line(describe),

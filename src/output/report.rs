@@ -342,6 +342,34 @@ impl Report {
     }
 }
 
+/// `"YYYY-MM-DD HH:MM UTC"` of `time` (the report's date; no time-zone database needed).
+pub fn utc_timestamp(time: std::time::SystemTime) -> String {
+    let seconds = time
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs()) as i64;
+    let (days, rest) = (seconds.div_euclid(86_400), seconds.rem_euclid(86_400));
+    // Civil date of a day count since 1970-01-01 (H. Hinnant's `civil_from_days`).
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let day_of_era = z - era * 146_097;
+    let year_of_era =
+        (day_of_era - day_of_era / 1460 + day_of_era / 36_524 - day_of_era / 146_096) / 365;
+    let day_of_year = day_of_era - (365 * year_of_era + year_of_era / 4 - year_of_era / 100);
+    let month_index = (5 * day_of_year + 2) / 153;
+    let day = day_of_year - (153 * month_index + 2) / 5 + 1;
+    let month = if month_index < 10 {
+        month_index + 3
+    } else {
+        month_index - 9
+    };
+    let year = year_of_era + era * 400 + i64::from(month <= 2);
+    format!(
+        "{year:04}-{month:02}-{day:02} {:02}:{:02} UTC",
+        rest / 3600,
+        rest % 3600 / 60
+    )
+}
+
 /// Writes `report` as one self-contained HTML page to `path` (atomically): every picture is read
 /// and embedded as a `data:image/png;base64,…` URI; the style sheet is inline; nothing refers to
 /// the network.
@@ -391,7 +419,12 @@ pub fn render_html(report: &Report) -> io::Result<String> {
     if !report.files.is_empty() {
         html.push_str("<section class=\"files\">\n<h2>Files of this run</h2>\n<ul>\n");
         for name in &report.files {
-            html.push_str(&format!("<li><code>{}</code></li>\n", escape(name)));
+            // Relative links: the page sits in the run directory beside its files.
+            html.push_str(&format!(
+                "<li><a href=\"{}\"><code>{}</code></a></li>\n",
+                escape(name),
+                escape(name)
+            ));
         }
         html.push_str("</ul>\n</section>\n");
     }
@@ -549,6 +582,17 @@ footer { margin-top: 36px; color: #8a909a; font-size: 0.85rem; }
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The report's date: the epoch, a leap day, the end of a century year.
+    #[test]
+    fn utc_timestamps_are_civil_dates() {
+        use std::time::{Duration, UNIX_EPOCH};
+        let at = |seconds: u64| utc_timestamp(UNIX_EPOCH + Duration::from_secs(seconds));
+        assert_eq!(at(0), "1970-01-01 00:00 UTC");
+        assert_eq!(at(951_782_400 + 3_600 + 120), "2000-02-29 01:02 UTC");
+        assert_eq!(at(978_307_199), "2000-12-31 23:59 UTC");
+        assert_eq!(at(1_796_083_200), "2026-12-01 00:00 UTC");
+    }
 
     #[test]
     fn base64_matches_rfc_4648_vectors() {

@@ -3,10 +3,14 @@
 //! ([`write_surface_vtu`]).
 //!
 //! Every file carries [`FieldData`] — at least the load $`\lambda`$ and its unit
-//! ([`FieldData::load`]) — as the dataset's `<FieldData>` (one-tuple arrays: `Float64` numbers,
-//! `String` texts), and any extra point arrays the caller computed ([`PointArray`]: stress
-//! resultants, the physical deflection, …). vtkio 0.6 does not write field data, so the block is
-//! inserted into its output; vtkio's reader skips it, VTK's reads it.
+//! ([`FieldData::load`]) — as the dataset's `<FieldData>`, and any extra point arrays the caller
+//! computed ([`PointArray`]: stress resultants, the physical deflection, …). vtkio 0.6 does not
+//! write field data, so the block is inserted into its output; vtkio's reader skips it, VTK's and
+//! meshio's read it.
+//!
+//! Field data holds numbers only, because meshio (the common Python reader) refuses a file with a
+//! `String` array ("Illegal data type 'String'"): a number is a one-tuple `Float64` array, a text
+//! a `UInt8` array of its UTF-8 bytes (in Python: `bytes(mesh.field_data["model"]).decode()`).
 
 use super::files::write_atomically;
 use super::grid::GridField;
@@ -56,7 +60,8 @@ impl PointArray {
 pub enum FieldValue {
     /// A number (a `Float64` array of one tuple).
     Number(f64),
-    /// A text (a `String` array of one tuple).
+    /// A text (a `UInt8` array of its UTF-8 bytes, one tuple per byte: meshio rejects the VTK
+    /// type `String`).
     Text(String),
 }
 
@@ -117,16 +122,15 @@ impl FieldData {
                     ));
                 }
                 FieldValue::Text(text) => {
-                    // VTK's ASCII encoding of a string array: the bytes as numbers, each string
-                    // ended by a zero byte.
-                    let bytes: Vec<String> = text
-                        .bytes()
-                        .chain(std::iter::once(0))
-                        .map(|b| b.to_string())
-                        .collect();
+                    if text.is_empty() {
+                        // meshio fails on an empty array (its text is missing).
+                        return Err(invalid(format!("field data `{name}`"), "must not be empty"));
+                    }
+                    let bytes: Vec<String> = text.bytes().map(|b| b.to_string()).collect();
                     xml.push_str(&format!(
-                        "<DataArray type=\"String\" Name=\"{name}\" NumberOfTuples=\"1\" \
+                        "<DataArray type=\"UInt8\" Name=\"{name}\" NumberOfTuples=\"{}\" \
                          format=\"ascii\">{}</DataArray>",
+                        bytes.len(),
                         bytes.join(" ")
                     ));
                 }
@@ -252,8 +256,13 @@ fn cell_type(number: u8) -> io::Result<CellType> {
 /// Writes a sampled surface as a `.vtu` file: the grid points of `surface` placed at
 /// $`(X, Y, s\,v)`$ with $`v`$ the sampled value (typically the physical deflection $`w`$ in mm)
 /// and $`s`$ = `vertical_scale`, `(columns − 1) × (rows − 1)` cells of type 9 (`Quad`), the point
-/// array named after the quantity's symbol (unscaled values), the `extra` point arrays (one value
-/// or vector per grid point, in the order of [`GridField::values`]) and `field_data`.
+/// array of the unscaled values named after the quantity's description in snake case
+/// (`physical_deflection` for [`crate::output::Quantity::deflection`]: not its symbol `w`, which
+/// names the envelope in the fields' files), the `extra` point arrays (one value or vector per grid
+/// point, in the order of [`GridField::values`]) and `field_data`.
+///
+/// The points already sit at the sampled height: the surface needs no warping (warping it by its
+/// own array would double the height).
 ///
 /// Errors (kind [`io::ErrorKind::InvalidInput`]): an invalid grid, non-finite values or scale,
 /// wrong array lengths, repeated names.
@@ -282,7 +291,7 @@ pub fn write_surface_vtu(
             ),
         ));
     }
-    let name = array_name(&surface.quantity.symbol);
+    let name = array_name(&surface.quantity);
     check_unique_names(
         std::iter::once(name.as_str()).chain(extra.iter().map(|a| a.name.as_str())),
     )?;
@@ -328,12 +337,16 @@ pub fn write_surface_vtu(
     write_piece(path, "wrinkle sampled surface", piece, field_data)
 }
 
-/// A VTU array name from a symbol: the symbol itself, or `value` when it is empty.
-fn array_name(symbol: &str) -> String {
-    if symbol.trim().is_empty() {
-        "value".to_string()
+/// A VTU array name for a quantity: its description in snake case (`physical_deflection`), else
+/// its symbol, else `value`.
+fn array_name(quantity: &crate::output::Quantity) -> String {
+    let words: Vec<&str> = quantity.description.split_whitespace().collect();
+    if !words.is_empty() {
+        words.join("_")
+    } else if !quantity.symbol.trim().is_empty() {
+        quantity.symbol.clone()
     } else {
-        symbol.to_string()
+        "value".to_string()
     }
 }
 

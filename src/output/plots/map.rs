@@ -3,7 +3,7 @@
 
 use super::canvas::{
     AXIS_TITLE_SIZE, DrawResult, FRAME_COLOR, Figure, Scale, TICK_SIZE, TITLE_SIZE,
-    diverging_color, draw_centred_text, draw_vertical_title, format_tick, render, text_size,
+    diverging_color, draw_centred_text, draw_vertical_title, render, text_size,
 };
 use super::panel::choose_ticks;
 use super::{FigureLayout, PanelLayout, PlotOutput};
@@ -34,6 +34,9 @@ pub struct WrinkleMap {
     /// the same number as the summary; `None`: the largest sample of `field`, which can miss a
     /// crest that falls between two samples.
     pub peak: Option<f64>,
+    /// The note under the title when the caller words it (e.g. for a field that is not a
+    /// deflection); `None`: [`WrinkleMap::note`] writes the largest value and the threshold.
+    pub caption: Option<String>,
 }
 
 impl WrinkleMap {
@@ -46,7 +49,14 @@ impl WrinkleMap {
             x_axis: Quantity::coordinate("X"),
             y_axis: Quantity::coordinate("Y"),
             peak: None,
+            caption: None,
         }
+    }
+
+    /// The same map with the note under the title worded by the caller.
+    pub fn with_caption(mut self, caption: impl Into<String>) -> Self {
+        self.caption = Some(caption.into());
+        self
     }
 
     /// The same map with its exact largest $`|v|`$ ([`WrinkleMap::peak`]).
@@ -73,6 +83,9 @@ impl WrinkleMap {
 
     /// The note written under the title.
     pub fn note(&self) -> String {
+        if let Some(caption) = &self.caption {
+            return caption.clone();
+        }
         let quantity = &self.field.quantity;
         let max = self.max_abs();
         let value = |v: f64, digits: usize| {
@@ -249,8 +262,8 @@ impl MapFigure<'_> {
             .build_cartesian_2d(x0..x1, y0..y1)?;
         let x_ticks = choose_ticks((x0, x1), width, true);
         let y_ticks = choose_ticks((y0, y1), height, false);
-        let x_format = |v: &f64| format_tick(*v, x_ticks.decimals);
-        let y_format = |v: &f64| format_tick(*v, y_ticks.decimals);
+        let x_format = |v: &f64| x_ticks.label(*v);
+        let y_format = |v: &f64| y_ticks.label(*v);
         let (x_title, y_title) = (self.map.x_axis.axis_title(), self.map.y_axis.axis_title());
         chart
             .configure_mesh()
@@ -342,7 +355,7 @@ impl MapFigure<'_> {
             .x_label_area_size(scale.px(X_LABEL_AREA))
             .right_y_label_area_size(scale.px(tick_label_area))
             .build_cartesian_2d(0.0..1.0, -limit..limit)?;
-        let format = |v: &f64| format_tick(*v, ticks.decimals);
+        let format = |v: &f64| ticks.label(*v);
         bar.configure_mesh()
             .disable_mesh()
             .disable_x_axis()

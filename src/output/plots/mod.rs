@@ -22,7 +22,7 @@ mod response;
 
 pub use canvas::SUPERSAMPLING;
 pub use map::{WrinkleMap, plot_wrinkle_map};
-pub use profiles::{Profile, ProfilePlot, plot_profiles};
+pub use profiles::{Profile, ProfilePlot, ReferenceLevel, plot_profiles, plot_profiles_with_level};
 pub use response::{
     ClosedFormCurve, LoadMarker, MarkerKind, Response, ResponsePoint, plot_comparison,
     plot_response,

@@ -70,6 +70,17 @@ pub(crate) struct Ticks {
     pub decimals: Option<usize>,
     /// Widest label, 1× pixels.
     pub label_width: f64,
+    /// Magnitude below which a tick is zero (a millionth of the axis span): a key point such as
+    /// $`-1.08\cdot10^{-19}`$, rounding noise of the range's arithmetic, is labelled `0`.
+    pub zero: f64,
+}
+
+impl Ticks {
+    /// The label of the tick at `value`.
+    pub fn label(&self, value: f64) -> String {
+        let value = if value.abs() < self.zero { 0.0 } else { value };
+        format_tick(value, self.decimals)
+    }
 }
 
 /// The most tick labels (at most 12) that fit along `length` pixels without overlapping:
@@ -78,26 +89,32 @@ pub(crate) struct Ticks {
 pub(crate) fn choose_ticks(range: (f64, f64), length: f64, horizontal: bool) -> Ticks {
     let coordinate = RangedCoordf64::from(range.0..range.1);
     let span = range.1 - range.0;
+    let zero = 1e-6 * span.abs();
     let mut fallback = None;
     for count in (2..=12).rev() {
-        let points = coordinate.key_points(count);
+        let points: Vec<f64> = coordinate
+            .key_points(count)
+            .into_iter()
+            .map(|v| if v.abs() < zero { 0.0 } else { v })
+            .collect();
         let decimals = tick_decimals(&points);
-        let label_width = points
-            .iter()
-            .map(|&v| text_size(&format_tick(v, decimals), TICK_SIZE).0)
-            .fold(0.0, f64::max);
-        let ticks = Ticks {
+        let mut ticks = Ticks {
             count,
             decimals,
-            label_width,
+            label_width: 0.0,
+            zero,
         };
+        ticks.label_width = points
+            .iter()
+            .map(|&v| text_size(&ticks.label(v), TICK_SIZE).0)
+            .fold(0.0, f64::max);
         fallback = Some(ticks);
         if points.len() < 2 {
             continue;
         }
         let spacing = length * (points[1] - points[0]).abs() / span;
         let needed = if horizontal {
-            label_width + TICK_LABEL_GAP
+            ticks.label_width + TICK_LABEL_GAP
         } else {
             2.0 * TICK_SIZE
         };
@@ -109,6 +126,7 @@ pub(crate) fn choose_ticks(range: (f64, f64), length: f64, horizontal: bool) -> 
         count: 2,
         decimals: Some(0),
         label_width: 0.0,
+        zero,
     })
 }
 
@@ -301,8 +319,8 @@ fn draw_axes<'a, DB: DrawingBackend>(
         .x_label_area_size(scale.px(X_LABEL_AREA))
         .y_label_area_size(scale.px(y_label_area))
         .build_cartesian_2d(x_range.0..x_range.1, y_range.0..y_range.1)?;
-    let x_format = |v: &f64| format_tick(*v, x_ticks.decimals);
-    let y_format = |v: &f64| format_tick(*v, y_ticks.decimals);
+    let x_format = |v: &f64| x_ticks.label(*v);
+    let y_format = |v: &f64| y_ticks.label(*v);
     chart
         .configure_mesh()
         .x_desc(panel.x.title.as_str())
@@ -591,6 +609,19 @@ mod tests {
         assert_eq!(tick_decimals(&[0.0, 0.25, 0.5]), Some(2));
         assert_eq!(tick_decimals(&[0.0, 50.0, 100.0]), Some(0));
         assert_eq!(tick_decimals(&[0.0, 2e-4, 4e-4]), None);
+    }
+
+    /// The colour bar of a "not wrinkled" map spans ±(threshold) ≈ ±5·10⁻⁴ mm: the key point
+    /// at the middle, rounding noise such as −1.08·10⁻¹⁹, is labelled `0`.
+    #[test]
+    fn rounding_noise_at_zero_is_labelled_zero() {
+        let ticks = choose_ticks((-5e-4, 5e-4), 400.0, false);
+        assert_eq!(ticks.label(-1.08e-19), "0");
+        assert_eq!(ticks.label(2e-4), "2.00e-4");
+        let coordinate = RangedCoordf64::from(-5e-4..5e-4);
+        for point in coordinate.key_points(ticks.count) {
+            assert!(!ticks.label(point).contains("e-1"), "{}", ticks.label(point));
+        }
     }
 
     #[test]

@@ -6,6 +6,7 @@ use super::canvas::{Dash, LEGEND_SIZE, LegendEntry, render, sequential_color, te
 use super::panel::{Axis, LegendPlacement, Line, Panel, PanelFigure};
 use crate::output::invalid;
 use crate::output::quantity::Quantity;
+use plotters::style::RGBColor;
 use std::io;
 use std::path::Path;
 
@@ -35,14 +36,39 @@ pub struct ProfilePlot {
 const FIGURE_WIDTH: f64 = 1400.0;
 const PANEL_HEIGHT: f64 = 560.0;
 
+/// A horizontal reference line of a profile plot (e.g. the carrier wavenumber $`Q`$ under the
+/// local wavenumber, or the minimum of $`\lambda_c(Q)`$): its ordinate and legend text.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ReferenceLevel {
+    /// Ordinate of the line.
+    pub value: f64,
+    /// Legend text, e.g. `"carrier Q = 0.23543 /mm"`.
+    pub label: String,
+}
+
 /// Plots `plot` to `STEM.png` and `STEM.svg`: one panel (title: `title`, then the location), the
 /// profiles coloured along viridis, the legend in a column to the right of the panel.
 ///
+/// The ordinate starts at 0 unless every value lies far from it (all of one sign, the smallest
+/// magnitude above a quarter of the largest): then it spans the data, so that a variation of a
+/// few percent (a local wavenumber of 0.23–0.26 /mm) fills the panel instead of a tenth of it.
+///
 /// Errors: no profile with a finite point, a failure writing the files.
 pub fn plot_profiles(stem: &Path, title: &str, plot: &ProfilePlot) -> io::Result<PlotOutput> {
-    let (x_range, y_range) = profile_ranges(plot)?;
+    plot_profiles_with_level(stem, title, plot, None)
+}
+
+/// [`plot_profiles`] with a dashed horizontal `level` (kept inside the ordinate's range) and
+/// its legend entry.
+pub fn plot_profiles_with_level(
+    stem: &Path,
+    title: &str,
+    plot: &ProfilePlot,
+    level: Option<&ReferenceLevel>,
+) -> io::Result<PlotOutput> {
+    let (x_range, y_range) = profile_ranges(plot, level.map(|l| l.value))?;
     let count = plot.profiles.len();
-    let lines = plot
+    let mut lines: Vec<Line> = plot
         .profiles
         .iter()
         .enumerate()
@@ -54,7 +80,23 @@ pub fn plot_profiles(stem: &Path, title: &str, plot: &ProfilePlot) -> io::Result
             dots: Vec::new(),
         })
         .collect();
-    let legend = profile_legend(plot);
+    let mut legend = profile_legend(plot);
+    if let Some(level) = level {
+        lines.push(Line {
+            points: vec![(x_range.0, level.value), (x_range.1, level.value)],
+            color: LEVEL_COLOR,
+            dash: Dash::Dashed,
+            width: 1.8,
+            dots: Vec::new(),
+        });
+        legend.push(LegendEntry {
+            label: level.label.clone(),
+            color: LEVEL_COLOR,
+            dash: Dash::Dashed,
+            width: 1.8,
+            marker: false,
+        });
+    }
     let widest = legend
         .iter()
         .map(|entry| text_size(&entry.label, LEGEND_SIZE).0)
@@ -85,9 +127,16 @@ pub fn plot_profiles(stem: &Path, title: &str, plot: &ProfilePlot) -> io::Result
     render(stem, &figure)
 }
 
+/// Colour of a reference level.
+const LEVEL_COLOR: RGBColor = RGBColor(200, 30, 30);
+
 /// The abscissa range of the finite points, and the ordinate range from 0 (or below) with 6 %
-/// room; an error when no profile has a finite point.
-fn profile_ranges(plot: &ProfilePlot) -> io::Result<((f64, f64), (f64, f64))> {
+/// room — or around the data when it lies far from 0 (see [`plot_profiles`]) — including
+/// `level`; an error when no profile has a finite point.
+fn profile_ranges(
+    plot: &ProfilePlot,
+    level: Option<f64>,
+) -> io::Result<((f64, f64), (f64, f64))> {
     let finite = plot
         .profiles
         .iter()
@@ -105,6 +154,10 @@ fn profile_ranges(plot: &ProfilePlot) -> io::Result<((f64, f64), (f64, f64))> {
         y_low = y_low.min(y);
         y_high = y_high.max(y);
     }
+    if let Some(level) = level.filter(|l| l.is_finite()) {
+        y_low = y_low.min(level);
+        y_high = y_high.max(level);
+    }
     if !x_low.is_finite() {
         return Err(invalid("profiles", "no profile has a finite point"));
     }
@@ -113,6 +166,12 @@ fn profile_ranges(plot: &ProfilePlot) -> io::Result<((f64, f64), (f64, f64))> {
     } else {
         (x_low - 1.0, x_high + 1.0)
     };
+    let far_from_zero = (y_low > 0.0 && y_low > 0.25 * y_high)
+        || (y_high < 0.0 && -y_high > 0.25 * -y_low);
+    if far_from_zero && y_high > y_low {
+        let room = 0.08 * (y_high - y_low);
+        return Ok((x_range, (y_low - room, y_high + room)));
+    }
     let (y_low, y_high) = (y_low.min(0.0), y_high.max(0.0));
     let span = y_high - y_low;
     let y_range = if span > 0.0 {

@@ -126,6 +126,10 @@ pub struct Response {
     pub closed_form: Option<ClosedFormCurve>,
     /// Vertical markers (linear buckling, loss of ellipticity, …).
     pub markers: Vec<LoadMarker>,
+    /// Why this response is not a valid result of its model (a failed validity check: an
+    /// ill-posed model, an unresolved mode), `None` when it is. A comparison draws it grey and
+    /// dashed, says why in the legend, and does not fit its axes to it.
+    pub caveat: Option<String>,
 }
 
 impl Response {
@@ -146,7 +150,15 @@ impl Response {
             points,
             closed_form: None,
             markers: Vec::new(),
+            caveat: None,
         }
+    }
+
+    /// Marks the response as not a valid result of its model, saying why (see
+    /// [`Response::caveat`]).
+    pub fn with_caveat(mut self, caveat: impl Into<String>) -> Self {
+        self.caveat = Some(caveat.into());
+        self
     }
 
     /// Adds the closed form.
@@ -439,7 +451,10 @@ fn padded((low, high): (f64, f64), below: f64, above: f64) -> (f64, f64) {
 /// Plots the responses of several models on one scene to `STEM.png` and `STEM.svg`: the largest
 /// amplitude against the load (left; each model's $`\lambda_c`$ as a dotted line in its colour)
 /// and against each model's own $`\lambda/\lambda_c`$ over $`[0.9, \max r_\text{end}]`$ (right);
-/// one colour per model, the legend below.
+/// one colour per model, the legend below. A response with a [`Response::caveat`] is drawn grey
+/// and dashed with the caveat in its legend entry, and the axes are fitted to the valid
+/// responses only (when there is one): an ill-posed model that runs away at a fraction of the
+/// others' loads does not squeeze them.
 ///
 /// Errors: no response, or one that [`plot_response`] would reject; all responses must share
 /// the load quantity's unit.
@@ -479,9 +494,35 @@ fn comparable(responses: &[Response]) -> io::Result<&Response> {
     Ok(first)
 }
 
-/// The colour of the `index`-th model of a comparison.
-fn comparison_color(index: usize) -> RGBColor {
-    CATEGORICAL[index % CATEGORICAL.len()]
+/// The colour of the `index`-th model of a comparison (grey for a response with a caveat).
+fn comparison_color(index: usize, response: &Response) -> RGBColor {
+    if response.caveat.is_some() {
+        CAVEAT_COLOR
+    } else {
+        CATEGORICAL[index % CATEGORICAL.len()]
+    }
+}
+
+/// The colour of a response that is not a valid result of its model.
+const CAVEAT_COLOR: RGBColor = RGBColor(150, 150, 150);
+
+/// The line style of a response: dashed when it has a caveat.
+fn comparison_dash(response: &Response) -> Dash {
+    if response.caveat.is_some() {
+        Dash::Dashed
+    } else {
+        Dash::Solid
+    }
+}
+
+/// The responses the axes are fitted to: the valid ones, or all when none is valid.
+fn fitted(responses: &[Response]) -> Vec<&Response> {
+    let valid: Vec<&Response> = responses.iter().filter(|r| r.caveat.is_none()).collect();
+    if valid.is_empty() {
+        responses.iter().collect()
+    } else {
+        valid
+    }
 }
 
 /// One entry per model with its $`\lambda_c`$, then the thresholds' dotted lines.
@@ -491,14 +532,18 @@ fn comparison_legend(responses: &[Response]) -> Vec<LegendEntry> {
         .enumerate()
         .map(|(index, response)| LegendEntry {
             label: format!(
-                "{} (λ_c = {})",
+                "{} (λ_c = {}){}",
                 response.model,
-                response.load.format_value(response.critical_load)
+                response.load.format_value(response.critical_load),
+                response
+                    .caveat
+                    .as_ref()
+                    .map_or(String::new(), |caveat| format!(" — not valid: {caveat}"))
             ),
-            color: comparison_color(index),
-            dash: Dash::Solid,
+            color: comparison_color(index, response),
+            dash: comparison_dash(response),
             width: 2.5,
-            marker: true,
+            marker: response.caveat.is_none(),
         })
         .collect();
     legend.push(LegendEntry {
@@ -519,17 +564,21 @@ fn comparison_lines(responses: &[Response], ratio: bool) -> Vec<Line> {
         .enumerate()
         .map(|(index, response)| Line {
             points: response.max_points(ratio),
-            color: comparison_color(index),
-            dash: Dash::Solid,
-            width: 2.5,
-            dots: response.step_ends(ratio),
+            color: comparison_color(index, response),
+            dash: comparison_dash(response),
+            width: if response.caveat.is_some() { 1.8 } else { 2.5 },
+            dots: if response.caveat.is_some() {
+                Vec::new()
+            } else {
+                response.step_ends(ratio)
+            },
         })
         .collect()
 }
 
 /// The left panel: amplitudes against the load, each model's $`\lambda_c`$ dotted.
 fn comparison_against_load(first: &Response, responses: &[Response]) -> Panel {
-    let (low, high) = finite_extent(responses.iter().flat_map(|r| {
+    let (low, high) = finite_extent(fitted(responses).into_iter().flat_map(|r| {
         r.points
             .iter()
             .map(|p| p.load)
@@ -553,7 +602,7 @@ fn comparison_against_load(first: &Response, responses: &[Response]) -> Panel {
             .enumerate()
             .map(|(index, response)| VerticalLine {
                 x: response.critical_load,
-                color: comparison_color(index),
+                color: comparison_color(index, response),
                 dash: Dash::Short,
                 tag: String::new(),
             })
@@ -565,8 +614,8 @@ fn comparison_against_load(first: &Response, responses: &[Response]) -> Panel {
 /// [`ZOOM_START_RATIO`].
 fn comparison_against_ratio(first: &Response, responses: &[Response]) -> Panel {
     let ratio_range = zoom_range(
-        responses
-            .iter()
+        fitted(responses)
+            .into_iter()
             .map(Response::final_ratio)
             .fold(f64::NEG_INFINITY, f64::max),
     );
