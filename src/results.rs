@@ -197,6 +197,8 @@ pub struct Trace {
     pub profiles: Vec<Snap>,
     /// States interpolated at the requested `output.vtu_loads`.
     pub requested: Vec<Snap>,
+    /// States at the step ends (`output.vtu` only): the `.pvd` time series of the path.
+    pub step_ends: Vec<Snap>,
     /// Last state (nodal values of the whole mesh).
     pub last: Snap,
     /// The user interrupted the path (Ctrl-C) after the last point.

@@ -317,8 +317,16 @@ impl<M: EnergyModel> PathRecorder<'_, M> {
                 ..Snap::default()
             });
         }
-        self.progress.update(
+        if !event.interior && self.scene.output.vtu {
+            self.trace.step_ends.push(Snap {
+                load: state.load,
+                values: values.clone(),
+                ..Snap::default()
+            });
+        }
+        self.progress.update_at_load(
             max_amplitude / h,
+            state.load,
             &format!("step {}, λ = {:.6e}", event.step, state.load),
         );
         self.previous = Some(state.clone());
@@ -443,7 +451,8 @@ impl<'a, M: EnergyModel> PathRecorder<'a, M> {
                 Quantity::new("max amplitude", "max |w| / h", ""),
                 0.0,
                 target,
-            ),
+            )
+            .with_critical_load(threshold.critical_load()),
             ProgressSink::standard_error(quiet),
         );
         PathRecorder {
@@ -472,6 +481,7 @@ impl<'a, M: EnergyModel> PathRecorder<'a, M> {
                 loss_of_ellipticity: None,
                 profiles: Vec::new(),
                 requested: Vec::new(),
+                step_ends: Vec::new(),
                 last: Snap::default(),
                 interrupted: false,
                 passed_perfect_bifurcation: None,
@@ -512,7 +522,12 @@ fn trace_path<M: EnergyModel>(
     trace.unreached_vtu_loads = recorder.vtu_below_path;
     trace.unreached_vtu_loads.extend(recorder.vtu_requests);
     if scene.output.vtu {
-        for snap in trace.requested.iter_mut().chain([&mut trace.last]) {
+        for snap in trace
+            .requested
+            .iter_mut()
+            .chain(trace.step_ends.iter_mut())
+            .chain([&mut trace.last])
+        {
             snap.stress_resultants = stress_resultants(problem, layout, &snap.values);
         }
     }
@@ -647,6 +662,9 @@ impl<M: EnergyModel> PathObserver for PathRecorder<'_, M> {
         trace
             .profiles
             .retain(|profile| Some(profile.load) != overshooting_load);
+        trace
+            .step_ends
+            .retain(|snap| Some(snap.load) != overshooting_load);
         let beyond = |snap: &Snap| snap.load > kept.load;
         let returned: Vec<f64> = trace
             .requested

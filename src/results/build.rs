@@ -205,13 +205,23 @@ fn vtu_files(context: &RunContext, trace: &Trace) -> Vec<VtuFile> {
 const CLOSED_FORM_SAMPLES: usize = 200;
 
 /// The physical closed-form amplitude $`2a/h`$ (eq. 62) against $`\lambda/\lambda_c`$ from 1 to
-/// the path's last load (at least 1.001), where the closed form applies to the scene.
+/// the path's last load (at least 1.001), where the closed form applies to the scene and
+/// describes the model: an envelope whose gradient is stiff (one that selects its own
+/// wavelength, or a complex envelope, which reduces to it without phase) — not a plate, whose
+/// wrinkles are fields of the mesh, nor a pure membrane.
 fn closed_form_amplitudes(
     context: &RunContext,
     trace: &Trace,
     threshold: &ThresholdSummary,
 ) -> Option<Vec<(f64, f64)>> {
     threshold.closed_form.closed_form_critical_load?;
+    use wrinkle_runtime::wavelength::{CarriedBecause, WavelengthSelection};
+    if !matches!(
+        context.spec.wavelength_selection(),
+        WavelengthSelection::OwnMinimum | WavelengthSelection::Carried(CarriedBecause::Phase)
+    ) {
+        return None;
+    }
     let scene = context.scene;
     let critical = context.threshold.critical_load();
     let rectangle = scene.clamped_rectangle();

@@ -87,8 +87,19 @@ impl ThresholdSteps<'_> {
                 M::SPEC.name
             ));
         }
+        // No search to show: a spinner (or a start line) says what runs from the first second.
+        let progress = SearchProgress::new(
+            &format!("{}: linear buckling", M::SPEC.name),
+            ProgressSink::standard_error(self.quiet),
+        );
+        progress.evaluation(
+            1,
+            &format!("{} unknowns, the mode and λ_c", problem.free_count()),
+        );
         let (buckling, reference_load) = self.robust_buckling(problem, factor)?;
+        progress.evaluation(2, "strong ellipticity at λ_c");
         let ellipticity = ellipticity_at_critical_load(problem, &buckling, reference_load);
+        progress.finish(&format!("λ_c = {:.6e}", buckling.critical_loads[0]));
         Ok(CriticalPoint {
             buckling,
             ellipticity,
