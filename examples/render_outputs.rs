@@ -381,9 +381,10 @@ impl RunData {
     fn summary(&self) -> SummaryTable {
         let s = &self.summary;
         let last = self.points.last();
-        let target = s["scene"]["solver"]["max_envelope_over_h"]
-            .as_f64()
-            .map(|t| 2.0 * t);
+        let solver = &s["scene"]["solver"];
+        let target = solver["max_amplitude_over_h"].as_f64().or_else(|| {
+            solver["max_envelope_over_h"].as_f64().map(|t| 2.0 * t)
+        });
         let final_amplitude = last.map(|p| p.max_amplitude_over_h);
         let reached = !s["failed"].as_bool().unwrap_or(true)
             && match (final_amplitude, target) {
@@ -395,6 +396,7 @@ impl RunData {
             method: self.method.clone(),
             dofs: s["dofs"].as_u64().unwrap_or(0) as usize,
             wavenumber: Some(self.wavenumber),
+            wavelength: Some(std::f64::consts::TAU / self.wavenumber),
             load: self.load.clone(),
             critical_load: Some(self.critical_load),
             closed_form_critical_load: s["closed_form_critical_load"].as_f64(),

@@ -43,6 +43,10 @@ pub enum Command {
         /// No progress reports on stderr.
         #[arg(long, short)]
         quiet: bool,
+        /// Also write the buckling mode (`mode.vtu`, `mode_surface.vtu`), the wavenumber search
+        /// (`wavenumber_search.csv/.png/.svg`) and `buckle.json` into this directory.
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
     },
     /// Path following (ANM or Riks) writing results into an output directory.
     Run {
@@ -192,7 +196,12 @@ where
 /// Executes one subcommand, writing its results on stdout.
 pub fn execute(command: &Command) -> Result<(), Error> {
     match command {
-        Command::Buckle { scene, json, quiet } => buckle(&scene.resolve()?, *json, *quiet),
+        Command::Buckle {
+            scene,
+            json,
+            quiet,
+            out,
+        } => buckle(&scene.resolve()?, *json, *quiet, out.as_deref()),
         Command::Run {
             scene,
             out,
@@ -231,8 +240,17 @@ pub fn execute(command: &Command) -> Result<(), Error> {
 
 /// `wrinkle buckle`: the threshold as JSON or as text; exit 4 when a validity check the scene
 /// does not accept failed.
-fn buckle(scene: &Scene, json: bool, quiet: bool) -> Result<(), Error> {
-    let threshold = commands::buckle(scene, quiet)?;
+fn buckle(scene: &Scene, json: bool, quiet: bool, out: Option<&Path>) -> Result<(), Error> {
+    let threshold = match out {
+        Some(directory) => {
+            let describe = |scene: &Scene, threshold: &crate::threshold::Threshold| {
+                let summary = ThresholdSummary::new(scene, threshold);
+                serde_json::to_value(buckle_json(scene, &summary)).unwrap_or_default()
+            };
+            commands::buckle_with_outputs(scene, quiet, directory, &describe)?
+        }
+        None => commands::buckle(scene, quiet)?,
+    };
     let summary = ThresholdSummary::new(scene, &threshold);
     if json {
         print_json(&buckle_json(scene, &summary))?;

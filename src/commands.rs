@@ -19,6 +19,19 @@ pub fn buckle(scene: &Scene, quiet: bool) -> Result<Threshold, Error> {
     crate::threshold::buckle(scene, quiet)
 }
 
+/// [`buckle`] that also writes the buckling mode, the wavenumber search and `buckle.json`
+/// (`describe` of the threshold) into `output_directory` (`wrinkle buckle --out DIR`, files in
+/// `docs/outputs.md`).
+pub fn buckle_with_outputs(
+    scene: &Scene,
+    quiet: bool,
+    output_directory: &Path,
+    describe: crate::buckle_outputs::Describe,
+) -> Result<Threshold, Error> {
+    crate::buckle_outputs::buckle_with_outputs(scene, quiet, output_directory, describe)
+        .map(|(threshold, _files)| threshold)
+}
+
 /// Path following of a scene (`wrinkle run`), writing its outputs into `output_directory`.
 /// The report comes back whatever the outcome once every output computed was written; a run
 /// that does not reach what was asked says so in [`crate::results::RunOutcome::error`] (exit

@@ -11,6 +11,8 @@
 //! or repeated entry), every override, every model's scene — and `OUT` is locked
 //! ([`DirectoryLock`]): a second comparison into it fails at once.
 
+mod overlay;
+
 use crate::error::{Error, io_error, output_directory_error};
 use crate::output::{
     DirectoryLock, Quantity, Response, ResponsePoint, plot_comparison, write_bytes_atomically,
@@ -20,7 +22,10 @@ use crate::results::{RunSummary, load_quantity};
 use crate::run::run_with;
 use crate::scene::Scene;
 use crate::study::{check_model_list, load_at_amplitude, number_cell};
-use crate::threshold::{ThresholdOptions, WavenumberModel, closed_form_threshold};
+use crate::threshold::{
+    MIN_ELEMENTS_PER_WAVELENGTH, ThresholdOptions, WavenumberModel, closed_form_threshold,
+};
+use wrinkle_runtime::wavelength::WavelengthSelection;
 use serde_json::json;
 use std::path::Path;
 
@@ -36,9 +41,19 @@ pub struct CompareRow {
     pub outcome: String,
     /// Why it did not reach its target, if it did not.
     pub reason: Option<String>,
+    /// The validity checks that failed (`scale_separation`, `ellipticity`, `mode_resolution`,
+    /// `well_posedness`), accepted by the scene or not: a row with any is not a valid result of
+    /// its model, is drawn grey and dashed, and never serves as the reference.
+    pub failed_checks: Vec<String>,
+    /// The mesh the model ran on, `NX×NY`.
+    pub mesh: Option<String>,
+    /// Why the mesh differs from the scene's (chosen by `compare` to resolve the model's
+    /// waves), `None` when it is the scene's or the user's.
+    pub mesh_note: Option<String>,
     /// Critical load of linear buckling.
     pub critical_load: Option<f64>,
-    /// $`\lambda_c`$ relative to the first model's.
+    /// $`\lambda_c`$ relative to the reference's (the first valid model's,
+    /// [`Comparison::reference`]).
     pub critical_load_ratio: Option<f64>,
     /// Wavenumber $`Q`$ (1/mm), envelope models.
     pub wavenumber: Option<f64>,
@@ -60,6 +75,16 @@ pub struct Comparison {
     pub rows: Vec<CompareRow>,
     /// The closed-form threshold (eq. 42) when the scene has one.
     pub closed_form_critical_load: Option<f64>,
+    /// The model the `ratio` column is relative to: the first one with a critical load and no
+    /// failed validity check (`None` when there is none; the ratios are then empty).
+    pub reference: Option<String>,
+}
+
+impl CompareRow {
+    /// Whether the row is a valid result of its model: it ran, and no validity check failed.
+    pub fn is_valid(&self) -> bool {
+        matches!(self.outcome.as_str(), "reached" | "incomplete") && self.failed_checks.is_empty()
+    }
 }
 
 /// One model's row from the result of its run.
@@ -69,6 +94,14 @@ fn row_of(model: &str, summary: &RunSummary) -> CompareRow {
         model: model.to_string(),
         outcome: summary.outcome.name().into(),
         reason: summary.outcome.reason().map(str::to_string),
+        failed_checks: summary
+            .threshold
+            .warnings
+            .iter()
+            .map(|w| w.check.to_string())
+            .collect(),
+        mesh: None,
+        mesh_note: None,
         critical_load: finite(Some(summary.linear_buckling_load)),
         critical_load_ratio: None,
         wavenumber: finite(summary.wavenumber),
@@ -95,12 +128,91 @@ fn response_of(model: &str, summary: &RunSummary, load: &Quantity) -> Option<Res
             step_end: !p.interior,
         })
         .collect();
-    Some(Response::new(
-        model,
-        load.clone(),
-        critical,
-        response_points,
-    ))
+    let response = Response::new(model, load.clone(), critical, response_points);
+    let checks: Vec<&str> = summary.threshold.warnings.iter().map(|w| w.check).collect();
+    Some(if checks.is_empty() {
+        response
+    } else {
+        response.with_caveat(checks.join(", "))
+    })
+}
+
+/// For a model whose wrinkles are fields resolved by the mesh (a plate), the mesh of `scene`
+/// refined along the wave direction to at least [`MIN_ELEMENTS_PER_WAVELENGTH`] elements per
+/// wavelength (with a tenth to spare, a multiple of 4), the other side refined too so that
+/// elements are at most 4 times longer than wide; `None` when the scene's mesh already
+/// resolves `wavelength` (mm).
+fn resolving_mesh(scene: &Scene, wavelength: f64) -> Option<(usize, usize)> {
+    let theta = scene.model.direction_degrees.to_radians();
+    let along_y = theta.sin().abs() > theta.cos().abs();
+    let (nx, ny) = (scene.mesh.elements_x, scene.mesh.elements_y);
+    let (lx, ly) = (scene.geometry.length_x, scene.geometry.length_y);
+    let (n_wave, l_wave, n_other, l_other) = if along_y {
+        (ny, ly, nx, lx)
+    } else {
+        (nx, lx, ny, ly)
+    };
+    if l_wave / n_wave as f64 * MIN_ELEMENTS_PER_WAVELENGTH <= wavelength {
+        return None;
+    }
+    let needed = (1.1 * MIN_ELEMENTS_PER_WAVELENGTH * l_wave / wavelength / 4.0).ceil() as usize * 4;
+    let other = n_other.max((l_other / (4.0 * l_wave / needed as f64)).ceil() as usize);
+    Some(if along_y {
+        (other, needed)
+    } else {
+        (needed, other)
+    })
+}
+
+/// The scene of `model` in the comparison: `scene` with the model's `--model-set` overrides,
+/// and, for a model resolved by the mesh whose overrides do not set the mesh, a mesh that
+/// resolves the wavelength of the wavenumber model (with a note saying so).
+fn model_scene(
+    scene: &Scene,
+    model: &str,
+    overrides: &[(String, String)],
+    wavenumber_model: &WavenumberModel,
+    quiet: bool,
+) -> Result<(Scene, Option<String>), Error> {
+    let mut one = scene.clone();
+    one.model.name = model.to_string();
+    let mut mesh_given = false;
+    for (name, assignment) in overrides {
+        if name == model {
+            one.apply_override(assignment)?;
+            mesh_given |= assignment.trim_start().starts_with("mesh.");
+        }
+    }
+    one.validate()?;
+    let resolved_by_mesh = wrinkle_models::catalogue()
+        .into_iter()
+        .find(|spec| spec.name == model)
+        .is_some_and(|spec| spec.wavelength_selection() == WavelengthSelection::ResolvedByMesh);
+    if !resolved_by_mesh || mesh_given {
+        return Ok((one, None));
+    }
+    let carrier = wavenumber_model.threshold(quiet)?;
+    let wavelength = std::f64::consts::TAU / carrier.wavenumber;
+    let Some((nx, ny)) = resolving_mesh(&one, wavelength) else {
+        return Ok((one, None));
+    };
+    let note = format!(
+        "{model}: mesh {nx}×{ny} instead of the scene's {}×{}, to resolve its waves ({} elements per wavelength of {wavelength:.2} mm, the wavelength of {}); set another with --model-set {model}:mesh.nx=…",
+        one.mesh.elements_x,
+        one.mesh.elements_y,
+        MIN_ELEMENTS_PER_WAVELENGTH,
+        wavenumber_model.name()
+    );
+    one.mesh.elements_x = nx;
+    one.mesh.elements_y = ny;
+    // A mesh too large to solve: refuse (exit 4) naming the model and the mesh it needs.
+    one.validate().map_err(|error| {
+        Error::Invalid(format!(
+            "{model} needs a {nx}×{ny} mesh to resolve its waves ({} elements per wavelength of {wavelength:.2} mm), which cannot be solved here: {error}; compare it on a smaller domain, or set its mesh with --model-set {model}:mesh.nx=… (its run then says whether the mode is resolved)",
+            MIN_ELEMENTS_PER_WAVELENGTH
+        ))
+    })?;
+    Ok((one, Some(note)))
 }
 
 /// Runs `scene` with each of `models` into `directory/MODEL/` and writes the comparison files.
@@ -111,7 +223,8 @@ pub fn compare(
     directory: &Path,
     quiet: bool,
 ) -> Result<Comparison, Error> {
-    let scenes = model_scenes(scene, models, model_overrides)?;
+    // The whole command line is checked before any work (the meshes chosen below come after).
+    model_scenes(scene, models, model_overrides)?;
     let _lock = DirectoryLock::inside(directory).map_err(output_directory_error(directory))?;
     let load = load_quantity(scene);
     // One wavenumber model for every model that needs it: its threshold is computed once.
@@ -123,11 +236,30 @@ pub fn compare(
     };
     let mut rows = Vec::new();
     let mut responses = Vec::new();
-    for (model, one) in models.iter().zip(&scenes) {
+    // The meshes that resolve each model's waves are chosen (or refused) before any model runs.
+    let overrides = parse_model_overrides(models, model_overrides)?;
+    let planned = models
+        .iter()
+        .map(|model| model_scene(scene, model, &overrides, &wavenumber_model, quiet))
+        .collect::<Result<Vec<_>, Error>>()?;
+    // Every model also writes its fields at one common load, for the overlaid profiles.
+    let overlay_load = overlay_load(scene, &wavenumber_model, quiet);
+    for (model, (mut one, mesh_note)) in models.iter().zip(planned) {
+        if let Some(load) = overlay_load {
+            one.output.vtu_loads.push(load);
+        }
+        if let (Some(note), false) = (&mesh_note, quiet) {
+            crate::output::message_line(&format!("note: {note}"));
+        }
+        let mesh = Some(format!("{}×{}", one.mesh.elements_x, one.mesh.elements_y));
         let out = directory.join(model);
-        match run_with(one, &out, &options) {
+        match run_with(&one, &out, &options) {
             Ok(report) => {
-                rows.push(row_of(model, &report.summary));
+                rows.push(CompareRow {
+                    mesh,
+                    mesh_note,
+                    ..row_of(model, &report.summary)
+                });
                 responses.extend(response_of(model, &report.summary, &load));
             }
             Err(error @ Error::Scene { .. }) => return Err(error),
@@ -135,6 +267,9 @@ pub fn compare(
                 model: model.clone(),
                 outcome: "error".into(),
                 reason: Some(error.to_string()),
+                failed_checks: Vec::new(),
+                mesh,
+                mesh_note,
                 critical_load: None,
                 critical_load_ratio: None,
                 wavenumber: None,
@@ -145,15 +280,23 @@ pub fn compare(
             }),
         }
     }
-    let first = rows.first().and_then(|r| r.critical_load);
+    let reference = rows
+        .iter()
+        .find(|r| r.is_valid() && r.critical_load.is_some())
+        .map(|r| (r.model.clone(), r.critical_load));
+    let reference_load = reference.as_ref().and_then(|(_, l)| *l);
     for row in &mut rows {
-        row.critical_load_ratio = row.critical_load.zip(first).map(|(l, f)| l / f);
+        row.critical_load_ratio = row.critical_load.zip(reference_load).map(|(l, f)| l / f);
     }
     let comparison = Comparison {
         rows,
         closed_form_critical_load: closed_form_threshold(scene).map(|(l, _)| l),
+        reference: reference.map(|(model, _)| model),
     };
     write_comparison(scene, &comparison, &responses, directory)?;
+    if let Some(load) = overlay_load {
+        overlay::write_profile_overlay(scene, models, load, directory)?;
+    }
     Ok(comparison)
 }
 
@@ -182,6 +325,20 @@ fn model_scenes(
         })
         .collect()
 }
+
+/// The load at which the models' wrinkles are overlaid: 1.1 × the wavenumber model's
+/// threshold, past every valid model's threshold and below its target; `None` without plots
+/// or VTU files, or when that threshold cannot be found (the comparison goes on without it).
+fn overlay_load(scene: &Scene, wavenumber_model: &WavenumberModel, quiet: bool) -> Option<f64> {
+    if !(scene.output.plots && scene.output.vtu) {
+        return None;
+    }
+    let carrier = wavenumber_model.threshold(quiet).ok()?;
+    Some(OVERLAY_LOAD_RATIO * carrier.critical_load).filter(|l| l.is_finite() && *l > 0.0)
+}
+
+/// The overlay's load over the wavenumber model's threshold.
+const OVERLAY_LOAD_RATIO: f64 = 1.1;
 
 /// Splits `MODEL:KEY=VALUE` overrides; the model must be one of `models`.
 fn parse_model_overrides(
@@ -243,10 +400,12 @@ fn write_comparison(
         "load_unit": crate::threshold::load_unit(scene),
         "amplitude_levels": AMPLITUDE_LEVELS,
         "closed_form_critical_load": comparison.closed_form_critical_load,
+        "reference": comparison.reference,
         "models": comparison.rows,
     });
     write_json(&path, &value).map_err(io_error(&path))?;
-    if !responses.is_empty() && scene.output.plots {
+    let plotted = !responses.is_empty() && scene.output.plots;
+    if plotted {
         let stem = directory.join("compare");
         plot_comparison(
             &stem,
@@ -255,7 +414,72 @@ fn write_comparison(
         )
         .map_err(io_error(&stem))?;
     }
+    let path = directory.join("index.html");
+    let html = index_page(scene, comparison, plotted);
+    write_bytes_atomically(&path, html.as_bytes()).map_err(io_error(&path))?;
     Ok(())
+}
+
+/// `index.html`: the comparison table with each model's run linked (`MODEL/report.html`), the
+/// overlaid responses, and links to `compare.csv` and `compare.json`.
+fn index_page(scene: &Scene, comparison: &Comparison, plotted: bool) -> String {
+    use crate::output::report::escape;
+    let unit = crate::threshold::load_unit(scene);
+    let mut html = format!(
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
+         <title>wrinkle compare — {source}</title>\n<style>\n\
+         body {{ font-family: sans-serif; max-width: 75rem; margin: 2rem auto; padding: 0 1rem; }}\n\
+         table {{ border-collapse: collapse; }} td, th {{ padding: 0.3rem 0.7rem; border-bottom: 1px solid #ddd; text-align: right; }}\n\
+         td:first-child, th:first-child, td:last-child {{ text-align: left; }}\n\
+         tr.invalid {{ color: #777; }} img {{ max-width: 100%; }}\n</style>\n</head>\n<body>\n\
+         <h1>Models compared on {source}</h1>\n<p>written {date}; the ratio is to {reference}; \
+         grey rows failed a validity check and are drawn grey and dashed.</p>\n<table>\n\
+         <tr><th>model</th><th>mesh</th><th>λ_c ({unit})</th><th>ratio</th><th>wavelength (mm)</th>",
+        source = escape(&scene.source),
+        date = crate::output::report::utc_timestamp(std::time::SystemTime::now()),
+        reference = comparison
+            .reference
+            .as_deref()
+            .map_or("no model (none is valid)".to_string(), escape),
+    );
+    for level in AMPLITUDE_LEVELS {
+        html.push_str(&format!("<th>λ(a/h = {level})</th>"));
+    }
+    html.push_str("<th>outcome</th></tr>\n");
+    let number = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.5e}"));
+    for row in &comparison.rows {
+        let class = if row.is_valid() { "" } else { " class=\"invalid\"" };
+        let mut outcome = escape(&row.outcome);
+        if !row.failed_checks.is_empty() {
+            outcome.push_str(&format!(" (failed: {})", escape(&row.failed_checks.join(", "))));
+        }
+        if let Some(note) = &row.mesh_note {
+            outcome.push_str(&format!("<br><small>{}</small>", escape(note)));
+        }
+        html.push_str(&format!(
+            "<tr{class}><td><a href=\"{model}/report.html\">{model}</a></td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>",
+            escape(row.mesh.as_deref().unwrap_or("—")),
+            number(row.critical_load),
+            row.critical_load_ratio.map_or("—".into(), |r| format!("{r:.4}")),
+            row.wavelength.map_or("—".into(), |l| format!("{l:.3}")),
+            model = escape(&row.model),
+        ));
+        for load in &row.load_at_amplitude {
+            html.push_str(&format!("<td>{}</td>", number(*load)));
+        }
+        html.push_str(&format!("<td>{outcome}</td></tr>\n"));
+    }
+    html.push_str("</table>\n");
+    if let Some(l) = comparison.closed_form_critical_load {
+        html.push_str(&format!("<p>closed form (42), envelope: λ_c = {l:.6e} {unit}</p>\n"));
+    }
+    if plotted {
+        html.push_str("<p><img src=\"compare.png\" alt=\"overlaid responses\"></p>\n");
+    }
+    html.push_str(
+        "<p><a href=\"compare.csv\">compare.csv</a> · <a href=\"compare.json\">compare.json</a></p>\n</body>\n</html>\n",
+    );
+    html
 }
 
 /// The comparison as a text table for the terminal.
@@ -288,10 +512,83 @@ pub fn comparison_table(comparison: &Comparison, unit: &str) -> String {
             }
         ));
     }
+    match &comparison.reference {
+        Some(model) => text.push_str(&format!("ratio: λ_c / λ_c of {model}\n")),
+        None => text.push_str("ratio: no model ran without a failed validity check\n"),
+    }
+    for row in &comparison.rows {
+        if !row.failed_checks.is_empty() {
+            text.push_str(&format!(
+                "not valid: {}: {}\n",
+                row.model,
+                row.failed_checks.join(", ")
+            ));
+        }
+        if let Some(note) = &row.mesh_note {
+            text.push_str(&format!("note: {note}\n"));
+        }
+    }
     if let Some(l) = comparison.closed_form_critical_load {
         text.push_str(&format!(
             "closed form (42), envelope: λ_c = {l:.6e} {unit}\n"
         ));
     }
     text
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Example 1 (400 × 200 mm, 32 × 16): 2 elements per 26.69 mm wavelength along X; the plate
+    /// gets 132 elements along X (8.8 per wavelength, a multiple of 4) and 17 across, so that
+    /// elements are at most 4 times longer than wide. A mesh that resolves the waves is kept.
+    #[test]
+    fn a_plate_gets_a_mesh_that_resolves_its_waves() {
+        let scene = Scene::default();
+        assert_eq!(
+            (scene.geometry.length_x, scene.geometry.length_y),
+            (400.0, 200.0)
+        );
+        let wavelength = 26.6876;
+        assert_eq!(resolving_mesh(&scene, wavelength), Some((132, 17)));
+        let mut fine = scene.clone();
+        fine.mesh.elements_x = 128;
+        fine.mesh.elements_y = 32;
+        assert_eq!(resolving_mesh(&fine, wavelength), None);
+        // Waves along Y (the strip): Y is refined.
+        let mut along_y = scene.clone();
+        along_y.model.direction_degrees = 90.0;
+        let (nx, ny) = resolving_mesh(&along_y, wavelength).unwrap();
+        assert!(ny as f64 * wavelength / 200.0 >= 8.0 && nx >= 32, "{nx}×{ny}");
+    }
+
+    fn row(model: &str, outcome: &str, checks: &[&str], critical: f64) -> CompareRow {
+        CompareRow {
+            model: model.into(),
+            outcome: outcome.into(),
+            reason: None,
+            failed_checks: checks.iter().map(|c| c.to_string()).collect(),
+            mesh: None,
+            mesh_note: None,
+            critical_load: Some(critical),
+            critical_load_ratio: None,
+            wavenumber: None,
+            wavelength: None,
+            load_at_amplitude: vec![None; AMPLITUDE_LEVELS.len()],
+            dofs: None,
+            seconds: None,
+        }
+    }
+
+    /// An ill-posed or unresolved model is not valid (and so never the reference); an
+    /// incomplete run without failed checks is.
+    #[test]
+    fn only_runs_without_failed_checks_are_valid() {
+        assert!(!row("fvk-plate", "invalid", &["mode_resolution"], 0.0945).is_valid());
+        assert!(!row("pure-membrane", "reached", &["well_posedness"], 0.0444).is_valid());
+        assert!(!row("x", "error", &[], 0.1).is_valid());
+        assert!(row("reference-envelope", "reached", &[], 0.0895).is_valid());
+        assert!(row("reference-envelope", "incomplete", &[], 0.0895).is_valid());
+    }
 }

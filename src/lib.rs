@@ -22,6 +22,7 @@
 
 pub mod analytic;
 pub mod bench;
+pub mod buckle_outputs;
 pub mod cli;
 pub mod closed_form;
 pub mod commands;
@@ -34,6 +35,7 @@ pub mod output;
 pub mod physics;
 pub mod results;
 pub mod run;
+pub mod run_figures;
 pub mod run_outputs;
 pub mod scene;
 pub mod setup;

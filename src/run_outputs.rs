@@ -8,9 +8,10 @@
 use crate::error::{Error, io_error};
 use crate::output::{
     ClosedFormCurve, FieldData, GridField, LoadMarker, PointArray, Profile, ProfilePlot, Quantity,
+    ReferenceLevel, plot_profiles_with_level,
     Report, ReportFigure, Response, ResponsePoint, RunDirectory, SummaryTable, plot_profiles,
-    plot_response, plot_wrinkle_map, write_fields_vtu_with_cells, write_path_csv,
-    write_surface_vtu,
+    SeriesEntry, plot_response, plot_wrinkle_map, write_fields_vtu_with_cells, write_path_csv,
+    write_pvd, write_surface_vtu,
 };
 use crate::results::{
     FINAL_FIELDS_FILE, FINAL_SURFACE_FILE, RunContext, RunReport, RunSummary, Snap, Trace,
@@ -22,10 +23,17 @@ use std::path::{Path, PathBuf};
 
 /// The load and the threshold as field data of a VTU file.
 fn field_data(context: &RunContext, load: f64) -> FieldData {
-    FieldData::load(load, load_unit(context.scene))
-        .with_text("model", context.spec.name)
-        .with_number("wavenumber", context.threshold.wavenumber.unwrap_or(0.0))
-        .with_number("critical_load", context.threshold.critical_load())
+    let data = FieldData::load(load, load_unit(context.scene)).with_text("model", context.spec.name);
+    // A plate has no carrier wavenumber (not 0): only the wavelength read from its mode.
+    let data = match context.threshold.wavenumber {
+        Some(wavenumber) => data.with_number("wavenumber", wavenumber),
+        None => data,
+    };
+    let data = match context.threshold.wavelength {
+        Some(wavelength) => data.with_number("wavelength", wavelength),
+        None => data,
+    };
+    data.with_number("critical_load", context.threshold.critical_load())
 }
 
 /// Samples per side of the surface grids: about 12 per wavelength, 50 to 1500.
@@ -75,6 +83,11 @@ pub fn write_run(
         .map_err(io_error(&dir))?;
     let mut report = Report::from_summary(&table);
     report.title = format!("{} on {}", context.spec.name, context.scene.source);
+    report.subtitle = format!(
+        "scene file: {} · written {} · files below are links",
+        context.scene.source,
+        crate::output::report::utc_timestamp(std::time::SystemTime::now())
+    );
     report.warnings = summary.notices.clone();
     report.figures = figures
         .iter()
@@ -114,44 +127,61 @@ fn summary_text(table: &SummaryTable, summary: &RunSummary) -> String {
     text
 }
 
-/// `fields_final.vtu`, `fields_load_*.vtu`, `surface_final.vtu`.
+/// `fields_final.vtu`, `fields_load_*.vtu`, `surface_final.vtu`, and the path's time series
+/// (`fields.pvd`, `surface.pvd` over `series/`).
 fn write_fields(context: &RunContext, trace: &Trace, dir: &Path) -> Result<Vec<PathBuf>, Error> {
     let mut files = Vec::new();
-    let mut write_nodal = |name: String, snap: &Snap| -> Result<(), Error> {
-        let path = dir.join(name);
-        let extra = nodal_amplitude(context, &snap.values);
-        let cells: Vec<PointArray> = ["N_X", "N_Y", "N_XY"]
-            .iter()
-            .zip(&snap.stress_resultants)
-            .map(|(name, values)| PointArray::scalar(*name, values.clone()))
-            .collect();
-        write_fields_vtu_with_cells(
-            &path,
-            context.mesh,
-            context.spec.fields,
-            &snap.values,
-            &extra,
-            &cells,
-            &field_data(context, snap.load),
-        )
-        .map_err(io_error(&path))?;
-        files.push(path);
-        Ok(())
-    };
     if context.scene.output.vtu {
-        write_nodal(FINAL_FIELDS_FILE.into(), &trace.last)?;
+        files.push(write_fields_file(
+            context,
+            &dir.join(FINAL_FIELDS_FILE),
+            &trace.last,
+        )?);
         for snap in &trace.requested {
-            write_nodal(
-                fields_file_at(snap.load, &context.scene.output.vtu_loads),
+            files.push(write_fields_file(
+                context,
+                &dir.join(fields_file_at(snap.load, &context.scene.output.vtu_loads)),
                 snap,
-            )?;
+            )?);
         }
     }
-    if !context.scene.output.surface {
-        return Ok(files);
+    if context.scene.output.surface {
+        files.push(write_surface_file(
+            context,
+            &dir.join(FINAL_SURFACE_FILE),
+            &trace.last,
+        )?);
     }
+    files.extend(write_series(context, trace, dir)?);
+    Ok(files)
+}
+
+/// One `fields_*.vtu`: the nodal fields of `snap`, the envelope's amplitude, the stress
+/// resultants per element, the field data.
+fn write_fields_file(context: &RunContext, path: &Path, snap: &Snap) -> Result<PathBuf, Error> {
+    let extra = nodal_amplitude(context, &snap.values);
+    let cells: Vec<PointArray> = ["N_X", "N_Y", "N_XY"]
+        .iter()
+        .zip(&snap.stress_resultants)
+        .map(|(name, values)| PointArray::scalar(*name, values.clone()))
+        .collect();
+    write_fields_vtu_with_cells(
+        path,
+        context.mesh,
+        context.spec.fields,
+        &snap.values,
+        &extra,
+        &cells,
+        &field_data(context, snap.load),
+    )
+    .map_err(io_error(path))?;
+    Ok(path.to_path_buf())
+}
+
+/// One `surface_*.vtu`: the physical deflection of `snap` on a fine grid.
+fn write_surface_file(context: &RunContext, path: &Path, snap: &Snap) -> Result<PathBuf, Error> {
     let bounds = context.mesh.bounds();
-    let snapshot = context.snapshot(&trace.last.values);
+    let snapshot = context.snapshot(&snap.values);
     let (sx, sy) = (
         samples(context, bounds[1] - bounds[0]),
         samples(context, bounds[3] - bounds[2]),
@@ -159,18 +189,56 @@ fn write_fields(context: &RunContext, trace: &Trace, dir: &Path) -> Result<Vec<P
     let grid = GridField::sample(Quantity::deflection(), bounds, sx + 1, sy + 1, |x, y| {
         snapshot.deflection([x, y])
     });
-    let path = dir.join(FINAL_SURFACE_FILE);
-    write_surface_vtu(
-        &path,
-        &grid,
-        1.0,
-        &[],
-        &field_data(context, trace.last.load),
-    )
-    .map_err(io_error(&path))?;
-    files.push(path);
+    write_surface_vtu(path, &grid, 1.0, &[], &field_data(context, snap.load))
+        .map_err(io_error(path))?;
+    Ok(path.to_path_buf())
+}
+
+/// The path as ParaView time series: `series/fields_NNNN.vtu` (with `output.vtu`) and
+/// `series/surface_NNNN.vtu` (with `output.surface` too) at every step end and the last point,
+/// listed by `fields.pvd` and `surface.pvd` with the load as time.
+fn write_series(context: &RunContext, trace: &Trace, dir: &Path) -> Result<Vec<PathBuf>, Error> {
+    let mut snaps: Vec<&Snap> = trace.step_ends.iter().collect();
+    if !context.scene.output.vtu || trace.last.values.is_empty() {
+        return Ok(Vec::new());
+    }
+    if snaps.last().map(|snap| snap.load) != Some(trace.last.load) {
+        snaps.push(&trace.last);
+    }
+    let series = dir.join(SERIES_DIRECTORY);
+    std::fs::create_dir_all(&series).map_err(io_error(&series))?;
+    let mut files = Vec::new();
+    let mut fields = Vec::new();
+    let mut surfaces = Vec::new();
+    for (index, snap) in snaps.iter().enumerate() {
+        let name = format!("{SERIES_DIRECTORY}/fields_{index:04}.vtu");
+        files.push(write_fields_file(context, &dir.join(&name), snap)?);
+        fields.push(SeriesEntry {
+            load: snap.load,
+            file: name,
+        });
+        if context.scene.output.surface {
+            let name = format!("{SERIES_DIRECTORY}/surface_{index:04}.vtu");
+            files.push(write_surface_file(context, &dir.join(&name), snap)?);
+            surfaces.push(SeriesEntry {
+                load: snap.load,
+                file: name,
+            });
+        }
+    }
+    for (name, entries) in [("fields.pvd", fields), ("surface.pvd", surfaces)] {
+        if entries.is_empty() {
+            continue;
+        }
+        let path = dir.join(name);
+        write_pvd(&path, &entries).map_err(io_error(&path))?;
+        files.push(path);
+    }
     Ok(files)
 }
+
+/// The folder of the run directory that holds the time series' VTU files.
+const SERIES_DIRECTORY: &str = "series";
 
 /// Nodal physical amplitude of envelope models (`amplitude`, mm) and, for a complex envelope,
 /// the local wavenumber (`local_wavenumber`, 1/mm).
@@ -221,6 +289,7 @@ fn write_plots(
     );
     let mut out = curves?;
     out.push(map?);
+    out.extend(crate::run_figures::write_extra_figures(context, trace, dir)?);
     Ok(out)
 }
 
@@ -310,7 +379,8 @@ fn response(context: &RunContext, summary: &RunSummary) -> Response {
         .with_marker(LoadMarker::linear_buckling(critical, &load));
     if let Some(curve) = &summary.closed_form_amplitudes {
         response = response.with_closed_form(ClosedFormCurve {
-            label: "one-mode closed form (62), physical 2a/h".into(),
+            label: "one-mode closed form (62): 2a/h at the centre (compare with |w| / h at the centre)"
+                .into(),
             points: curve.clone(),
         });
     }
@@ -494,7 +564,11 @@ fn write_local_wavenumber(
         context.threshold.wavenumber.unwrap_or(0.0)
     );
     let stem = dir.join("local_wavenumber");
-    let plot = plot_profiles(
+    let carrier = context.threshold.wavenumber.map(|q| ReferenceLevel {
+        value: q,
+        label: format!("carrier Q = {q:.5} /mm"),
+    });
+    let plot = plot_profiles_with_level(
         &stem,
         &format!("{}: local wavenumber", context.spec.name),
         &ProfilePlot {
@@ -503,6 +577,7 @@ fn write_local_wavenumber(
             location: location.clone(),
             profiles,
         },
+        carrier.as_ref(),
     )
     .map_err(io_error(&stem))?;
     Ok(Some((plot.files, format!("Local wavenumber {location}"))))
@@ -520,6 +595,7 @@ fn summary_table(context: &RunContext, summary: &RunSummary) -> SummaryTable {
         },
         dofs: summary.dofs,
         wavenumber: summary.wavenumber,
+        wavelength: summary.wavelength,
         load: context.load_quantity(),
         critical_load: Some(summary.linear_buckling_load),
         closed_form_critical_load: summary.closed_form_critical_load,

@@ -21,6 +21,7 @@ fn default_scene_summary() -> SummaryTable {
         method: "ANM".into(),
         dofs: 4704,
         wavenumber: Some(0.2354347),
+        wavelength: Some(std::f64::consts::TAU / 0.2354347),
         load: Quantity::biaxial_load(),
         critical_load: Some(0.0895213338),
         closed_form_critical_load: Some(0.0895212413),
@@ -74,6 +75,23 @@ fn summary_rows_carry_units_and_the_closed_form_beside_the_critical_load() {
 
 /// A long stop reason does not widen the table: the other rows' notes keep the column of the
 /// short values, and the long value is followed by its note after two spaces.
+/// A plate has no carrier wavenumber; its table still shows the wavelength read from its mode
+/// (26.641 mm on example 1), and no `wavenumber Q` row.
+#[test]
+fn a_plate_table_shows_the_wavelength_of_its_mode() {
+    let table = SummaryTable {
+        model: "fvk-plate".into(),
+        wavenumber: None,
+        wavelength: Some(26.641),
+        ..default_scene_summary()
+    };
+    let rows = table.rows();
+    assert!(rows.iter().all(|r| r.label != "wavenumber Q"), "{rows:?}");
+    let row = rows.iter().find(|r| r.label == "wavelength").unwrap();
+    assert_eq!(row.value, "26.64 mm");
+    assert_eq!(row.note, "read from the buckling mode");
+}
+
 #[test]
 fn a_long_stop_reason_keeps_the_table_narrow() {
     let mut summary = default_scene_summary();

@@ -68,6 +68,7 @@
 //!     method: "ANM".into(),
 //!     dofs: 4704,
 //!     wavenumber: Some(0.2354),
+//!     wavelength: Some(26.69),
 //!     load: load.clone(),
 //!     critical_load: Some(critical),
 //!     closed_form_critical_load: None,

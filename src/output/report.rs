@@ -50,6 +50,9 @@ pub struct SummaryTable {
     pub dofs: usize,
     /// Wavenumber $`Q`$ (1/mm) of envelope models; `None` for a full plate.
     pub wavenumber: Option<f64>,
+    /// Wavelength (mm): $`2\pi/Q`$ of an envelope model, read from the buckling mode for a
+    /// plate (shown without a wavenumber then).
+    pub wavelength: Option<f64>,
     /// The load $`\lambda`$ (labels and unit of every load below).
     pub load: Quantity,
     /// Critical load $`\lambda_c`$ of linear buckling.
@@ -117,10 +120,21 @@ impl SummaryTable {
         rows
     }
 
-    /// $`Q`$ and $`2\pi/Q`$ of an envelope model.
+    /// $`Q`$ and $`2\pi/Q`$ of an envelope model; a plate's wavelength read from its mode.
     fn wavenumber_rows(&self) -> Vec<SummaryRow> {
         let Some(q) = self.wavenumber.filter(|q| q.is_finite() && *q > 0.0) else {
-            return Vec::new();
+            return self
+                .wavelength
+                .filter(|l| l.is_finite() && *l > 0.0)
+                .map(|wavelength| {
+                    SummaryRow::new(
+                        "wavelength",
+                        format!("{} mm", format_significant(wavelength, 4)),
+                        "read from the buckling mode",
+                    )
+                })
+                .into_iter()
+                .collect();
         };
         vec![
             SummaryRow::new(
