@@ -9,14 +9,13 @@
 use crate::error::{Error, io_error};
 use crate::output::{
     FieldData, GridField, PointArray, Profile, ProfilePlot, Quantity, ReferenceLevel, RunDirectory,
-    plot_profiles_with_level, write_bytes_atomically, write_fields_vtu, write_json, write_surface_vtu,
+    plot_profiles_with_level, write_bytes_atomically, write_fields_vtu, write_json,
+    write_surface_vtu,
 };
 use crate::physics::{Layout, Snapshot};
 use crate::scene::Scene;
 use crate::setup::{build_problem, configure_model, layout_of, unknown_model};
-use crate::threshold::{
-    Threshold, analyse, find_threshold, load_unit, wavenumber_range,
-};
+use crate::threshold::{Threshold, analyse, find_threshold, load_unit, wavenumber_range};
 use std::path::{Path, PathBuf};
 use wrinkle_models::{ModelVisitor, with_model};
 use wrinkle_runtime::EnergyModel;
@@ -75,10 +74,67 @@ impl ModelVisitor for BuckleOutputs<'_> {
         let threshold = find_threshold(scene, &mut problem, &mut factor, self.quiet)?;
         let layout = layout_of::<M>(scene)?;
         let json = (self.describe)(scene, &threshold);
-        let files =
-            write_buckle_outputs(scene, &problem, &layout, &threshold, &json, self.directory)?;
+        // The scan sets the model's wavenumber parameter; the mode and the pre-buckling state
+        // written below come from the threshold, not from the problem's parameters.
+        let evaluations: Vec<WavenumberEvaluation> = threshold
+            .search
+            .iter()
+            .cloned()
+            .chain(scan_around_minimum(&mut problem, &mut factor, &threshold))
+            .collect();
+        let outputs = BuckleFiles {
+            threshold: &threshold,
+            evaluations: &evaluations,
+            json: &json,
+        };
+        let files = write_buckle_outputs(scene, &problem, &layout, &outputs, self.directory)?;
         Ok((threshold, files))
     }
+}
+
+/// What `buckle --out` writes besides the mode: the evaluations of $`\lambda_c(Q)`$ and the
+/// `buckle --json` object.
+struct BuckleFiles<'a> {
+    threshold: &'a Threshold,
+    evaluations: &'a [WavenumberEvaluation],
+    json: &'a serde_json::Value,
+}
+
+/// Relative half-widths of the scan of $`\lambda_c(Q)`$ about the minimum: from
+/// $`0.6\,Q`$ to $`1.6\,Q`$ in [`SCAN_POINTS`] analyses.
+const SCAN_RANGE: (f64, f64) = (0.6, 1.6);
+/// Linear buckling analyses of the scan.
+const SCAN_POINTS: usize = 21;
+
+/// $`\lambda_c`$ at [`SCAN_POINTS`] wavenumbers about the threshold's (envelope models whose
+/// $`Q`$ was searched): the curve the minimum sits on, which a search started from the closed
+/// form (3 analyses) does not show. Failures leave the curve shorter, never fail `buckle`.
+fn scan_around_minimum<M: EnergyModel>(
+    problem: &mut Problem<M>,
+    factor: &mut wrinkle_runtime::linear::factor::SparseFactorization,
+    threshold: &Threshold,
+) -> Vec<WavenumberEvaluation> {
+    let Some(q) = threshold
+        .wavenumber
+        .filter(|_| !threshold.search.is_empty())
+    else {
+        return Vec::new();
+    };
+    let options = wrinkle_runtime::solve::wavenumber::WavenumberSearchOptions {
+        range: (SCAN_RANGE.0 * q, SCAN_RANGE.1 * q),
+        scan_points: SCAN_POINTS,
+        load_guess: Some(threshold.critical_load()),
+        ..Default::default()
+    };
+    let mut evaluations = Vec::new();
+    let mut observer = |e: &WavenumberEvaluation| evaluations.push(e.clone());
+    let _ = wrinkle_runtime::solve::wavenumber::minimise_critical_load(
+        problem,
+        factor,
+        &options,
+        &mut observer,
+    );
+    evaluations
 }
 
 /// Writes the mode, the search and `buckle.json`, then `summary.json` listing them.
@@ -86,23 +142,21 @@ fn write_buckle_outputs<M: EnergyModel>(
     scene: &Scene,
     problem: &Problem<M>,
     layout: &Layout,
-    threshold: &Threshold,
-    json: &serde_json::Value,
+    outputs: &BuckleFiles,
     directory: &Path,
 ) -> Result<Vec<PathBuf>, Error> {
+    let (threshold, json) = (outputs.threshold, outputs.json);
     let mut run_directory = RunDirectory::prepare(directory).map_err(io_error(directory))?;
     let dir = run_directory.root().to_path_buf();
     let mut files = write_mode(scene, problem, layout, threshold, &dir)?;
-    if !threshold.search.is_empty() {
-        files.extend(write_search(scene, threshold, &dir)?);
+    if !outputs.evaluations.is_empty() {
+        files.extend(write_search(scene, threshold, outputs.evaluations, &dir)?);
     }
     let path = dir.join("buckle.json");
     write_json(&path, json).map_err(io_error(&path))?;
     files.push(path);
     run_directory.record(&files).map_err(io_error(&dir))?;
-    let path = run_directory
-        .write_summary(json)
-        .map_err(io_error(&dir))?;
+    let path = run_directory.write_summary(json).map_err(io_error(&dir))?;
     files.push(path);
     Ok(files)
 }
@@ -144,7 +198,9 @@ fn write_mode<M: EnergyModel>(
         .map(|(f, name)| {
             PointArray::scalar(
                 format!("prebuckling_{name}"),
-                (0..mesh.nodes.len()).map(|n| prebuckling[n * nf + f]).collect(),
+                (0..mesh.nodes.len())
+                    .map(|n| prebuckling[n * nf + f])
+                    .collect(),
             )
         })
         .collect();
@@ -206,18 +262,24 @@ fn mode_field_data(scene: &Scene, threshold: &Threshold) -> FieldData {
     }
 }
 
-/// `wavenumber_search.csv` (one row per evaluation, in the order done) and
-/// `wavenumber_search.png/.svg` ($`\lambda_c`$ against $`Q`$, accepted evaluations).
-fn write_search(scene: &Scene, threshold: &Threshold, dir: &Path) -> Result<Vec<PathBuf>, Error> {
+/// `wavenumber_search.csv` (one row per evaluation, in the order done: the search's, then the
+/// scan's) and `wavenumber_search.png/.svg` ($`\lambda_c`$ against $`Q`$, accepted
+/// evaluations).
+fn write_search(
+    scene: &Scene,
+    threshold: &Threshold,
+    evaluations: &[WavenumberEvaluation],
+    dir: &Path,
+) -> Result<Vec<PathBuf>, Error> {
     let mut csv = String::from("wavenumber,critical_load,phase,rejected\n");
-    for evaluation in &threshold.search {
-        csv.push_str(&search_row(evaluation));
+    let searched = threshold.search.len();
+    for (index, evaluation) in evaluations.iter().enumerate() {
+        csv.push_str(&search_row(evaluation, index < searched));
     }
     let path = dir.join(SEARCH_CSV_FILE);
     write_bytes_atomically(&path, csv.as_bytes()).map_err(io_error(&path))?;
     let mut files = vec![path];
-    let mut points: Vec<(f64, f64)> = threshold
-        .search
+    let mut points: Vec<(f64, f64)> = evaluations
         .iter()
         .filter_map(|e| e.critical_load.map(|load| (e.parameter, load)))
         .collect();
@@ -228,12 +290,18 @@ fn write_search(scene: &Scene, threshold: &Threshold, dir: &Path) -> Result<Vec<
     let load = crate::results::load_quantity(scene);
     let (low, high) = wavenumber_range(scene);
     let chosen = threshold.wavenumber.map_or(String::new(), |q| {
-        format!(", minimum at Q = {q:.5} /mm, λ_c = {}", load.format_value(threshold.critical_load()))
+        format!(
+            ", minimum at Q = {q:.5} /mm, λ_c = {}",
+            load.format_value(threshold.critical_load())
+        )
     });
     let plot = ProfilePlot {
         abscissa: Quantity::new("wavenumber", "Q", "1/mm"),
         ordinate: Quantity::new("critical load", "λ_c", &load.unit),
-        location: format!("searched over Q in [{low:.4}, {high:.4}] /mm{chosen}"),
+        location: format!(
+            "search over Q in [{low:.4}, {high:.4}] /mm and a scan of {SCAN_POINTS} from {} to {} Q{chosen}",
+            SCAN_RANGE.0, SCAN_RANGE.1
+        ),
         profiles: vec![Profile {
             label: format!("{} evaluations", points.len()),
             points,
@@ -255,8 +323,8 @@ fn write_search(scene: &Scene, threshold: &Threshold, dir: &Path) -> Result<Vec<
     Ok(files)
 }
 
-/// One CSV row of an evaluation of the search.
-fn search_row(evaluation: &WavenumberEvaluation) -> String {
+/// One CSV row of an evaluation: of the search (`searched`) or of the scan.
+fn search_row(evaluation: &WavenumberEvaluation, searched: bool) -> String {
     let rejected = evaluation
         .rejected
         .as_deref()
@@ -268,7 +336,11 @@ fn search_row(evaluation: &WavenumberEvaluation) -> String {
         evaluation
             .critical_load
             .map_or(String::new(), |l| l.to_string()),
-        if evaluation.scan { "scan" } else { "refinement" },
+        match (searched, evaluation.scan) {
+            (true, true) => "search scan",
+            (true, false) => "search refinement",
+            (false, _) => "curve scan",
+        },
         rejected
     )
 }

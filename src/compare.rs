@@ -25,9 +25,9 @@ use crate::study::{check_model_list, load_at_amplitude, number_cell};
 use crate::threshold::{
     MIN_ELEMENTS_PER_WAVELENGTH, ThresholdOptions, WavenumberModel, closed_form_threshold,
 };
-use wrinkle_runtime::wavelength::WavelengthSelection;
 use serde_json::json;
 use std::path::Path;
+use wrinkle_runtime::wavelength::WavelengthSelection;
 
 /// Physical amplitudes $`a/h`$ at which the loads are compared.
 pub const AMPLITUDE_LEVELS: [f64; 3] = [0.5, 1.0, 2.0];
@@ -155,7 +155,8 @@ fn resolving_mesh(scene: &Scene, wavelength: f64) -> Option<(usize, usize)> {
     if l_wave / n_wave as f64 * MIN_ELEMENTS_PER_WAVELENGTH <= wavelength {
         return None;
     }
-    let needed = (1.1 * MIN_ELEMENTS_PER_WAVELENGTH * l_wave / wavelength / 4.0).ceil() as usize * 4;
+    let needed =
+        (1.1 * MIN_ELEMENTS_PER_WAVELENGTH * l_wave / wavelength / 4.0).ceil() as usize * 4;
     let other = n_other.max((l_other / (4.0 * l_wave / needed as f64)).ceil() as usize);
     Some(if along_y {
         (other, needed)
@@ -448,10 +449,17 @@ fn index_page(scene: &Scene, comparison: &Comparison, plotted: bool) -> String {
     html.push_str("<th>outcome</th></tr>\n");
     let number = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.5e}"));
     for row in &comparison.rows {
-        let class = if row.is_valid() { "" } else { " class=\"invalid\"" };
+        let class = if row.is_valid() {
+            ""
+        } else {
+            " class=\"invalid\""
+        };
         let mut outcome = escape(&row.outcome);
         if !row.failed_checks.is_empty() {
-            outcome.push_str(&format!(" (failed: {})", escape(&row.failed_checks.join(", "))));
+            outcome.push_str(&format!(
+                " (failed: {})",
+                escape(&row.failed_checks.join(", "))
+            ));
         }
         if let Some(note) = &row.mesh_note {
             outcome.push_str(&format!("<br><small>{}</small>", escape(note)));
@@ -471,7 +479,9 @@ fn index_page(scene: &Scene, comparison: &Comparison, plotted: bool) -> String {
     }
     html.push_str("</table>\n");
     if let Some(l) = comparison.closed_form_critical_load {
-        html.push_str(&format!("<p>closed form (42), envelope: λ_c = {l:.6e} {unit}</p>\n"));
+        html.push_str(&format!(
+            "<p>closed form (42), envelope: λ_c = {l:.6e} {unit}</p>\n"
+        ));
     }
     if plotted {
         html.push_str("<p><img src=\"compare.png\" alt=\"overlaid responses\"></p>\n");
@@ -560,7 +570,10 @@ mod tests {
         let mut along_y = scene.clone();
         along_y.model.direction_degrees = 90.0;
         let (nx, ny) = resolving_mesh(&along_y, wavelength).unwrap();
-        assert!(ny as f64 * wavelength / 200.0 >= 8.0 && nx >= 32, "{nx}×{ny}");
+        assert!(
+            ny as f64 * wavelength / 200.0 >= 8.0 && nx >= 32,
+            "{nx}×{ny}"
+        );
     }
 
     fn row(model: &str, outcome: &str, checks: &[&str], critical: f64) -> CompareRow {

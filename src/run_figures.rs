@@ -105,7 +105,11 @@ fn write_zone_zooms(
     let wavelength = context.threshold.wavelength.unwrap_or(lx.min(ly) / 4.0);
     let long = if axis == 0 { lx } else { ly };
     let samples = ((8.0 * long / wavelength) as usize).clamp(400, 3000);
-    let (columns, rows) = if axis == 0 { (samples, 41) } else { (41, samples) };
+    let (columns, rows) = if axis == 0 {
+        (samples, 41)
+    } else {
+        (41, samples)
+    };
     let overview = GridField::sample(Quantity::deflection(), bounds, columns, rows, |x, y| {
         snapshot.deflection([x, y])
     });
@@ -195,13 +199,25 @@ fn write_membrane_forces(
         let (low, high) = field
             .values
             .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &v| (l.min(v), h.max(v)));
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &v| {
+                (l.min(v), h.max(v))
+            });
+        let limit = color_limit(low, high);
+        let number = |v: f64| crate::output::quantity::format_significant(v, 4);
+        let saturated = if limit < low.abs().max(high.abs()) {
+            " (beyond it saturated: the scale follows the compression)"
+        } else {
+            ""
+        };
         let caption = format!(
-            "{name} from {} to {} N/mm; colour scale ± max |{name}|, blue = compression",
-            crate::output::quantity::format_significant(low, 4),
-            crate::output::quantity::format_significant(high, 4)
+            "{name} from {} to {} N/mm; colour scale ± {} N/mm{saturated}, blue = compression",
+            number(low),
+            number(high),
+            number(limit)
         );
-        let map = WrinkleMap::new(field, 0.0, "").with_caption(caption);
+        let map = WrinkleMap::new(field, 0.0, "")
+            .with_peak(limit)
+            .with_caption(caption);
         let plot = plot_wrinkle_map(&stem, &title, &map).map_err(io_error(&stem))?;
         figures.push((
             plot.files,
@@ -209,6 +225,21 @@ fn write_membrane_forces(
         ));
     }
     Ok(figures)
+}
+
+/// Half-range of the colour scale of a membrane force from `low` to `high`: the largest
+/// magnitude, unless the compression ($`-\text{low}`$) is less than a quarter of the tension —
+/// then twice the compression, so that the compressed zones (where the sheet wrinkles) are
+/// not a pale patch beside a saturated clamp.
+fn color_limit(low: f64, high: f64) -> f64 {
+    let largest = low.abs().max(high.abs());
+    if low < 0.0 && -low < 0.25 * high {
+        -2.0 * low
+    } else if largest > 0.0 {
+        largest
+    } else {
+        1.0
+    }
 }
 
 /// The last step end strictly between 0 and `critical` with its stress resultants, else the
@@ -250,7 +281,13 @@ mod tests {
         let one = wrinkled_zones(&field, 1, 0.1, 2.0, 1);
         assert_eq!(one.len(), 1);
         assert!(one[0].0 < 20.0, "the strongest zone first: {one:?}");
-        let flat = GridField::sample(Quantity::deflection(), [0.0, 1.0, 0.0, 1.0], 5, 5, |_, _| 0.0);
+        let flat = GridField::sample(
+            Quantity::deflection(),
+            [0.0, 1.0, 0.0, 1.0],
+            5,
+            5,
+            |_, _| 0.0,
+        );
         assert!(wrinkled_zones(&flat, 0, 0.1, 0.1, 2).is_empty());
     }
 }

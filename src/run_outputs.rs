@@ -8,10 +8,9 @@
 use crate::error::{Error, io_error};
 use crate::output::{
     ClosedFormCurve, FieldData, GridField, LoadMarker, PointArray, Profile, ProfilePlot, Quantity,
-    ReferenceLevel, plot_profiles_with_level,
-    Report, ReportFigure, Response, ResponsePoint, RunDirectory, SummaryTable, plot_profiles,
-    SeriesEntry, plot_response, plot_wrinkle_map, write_fields_vtu_with_cells, write_path_csv,
-    write_pvd, write_surface_vtu,
+    ReferenceLevel, Report, ReportFigure, Response, ResponsePoint, RunDirectory, SeriesEntry,
+    SummaryTable, plot_profiles, plot_profiles_with_level, plot_response, plot_wrinkle_map,
+    write_fields_vtu_with_cells, write_path_csv, write_pvd, write_surface_vtu,
 };
 use crate::results::{
     FINAL_FIELDS_FILE, FINAL_SURFACE_FILE, RunContext, RunReport, RunSummary, Snap, Trace,
@@ -23,7 +22,8 @@ use std::path::{Path, PathBuf};
 
 /// The load and the threshold as field data of a VTU file.
 fn field_data(context: &RunContext, load: f64) -> FieldData {
-    let data = FieldData::load(load, load_unit(context.scene)).with_text("model", context.spec.name);
+    let data =
+        FieldData::load(load, load_unit(context.scene)).with_text("model", context.spec.name);
     // A plate has no carrier wavenumber (not 0): only the wavelength read from its mode.
     let data = match context.threshold.wavenumber {
         Some(wavenumber) => data.with_number("wavenumber", wavenumber),
@@ -289,7 +289,9 @@ fn write_plots(
     );
     let mut out = curves?;
     out.push(map?);
-    out.extend(crate::run_figures::write_extra_figures(context, trace, dir)?);
+    out.extend(crate::run_figures::write_extra_figures(
+        context, trace, dir,
+    )?);
     Ok(out)
 }
 
@@ -379,8 +381,9 @@ fn response(context: &RunContext, summary: &RunSummary) -> Response {
         .with_marker(LoadMarker::linear_buckling(critical, &load));
     if let Some(curve) = &summary.closed_form_amplitudes {
         response = response.with_closed_form(ClosedFormCurve {
-            label: "one-mode closed form (62): 2a/h at the centre (compare with |w| / h at the centre)"
-                .into(),
+            label:
+                "one-mode closed form (62): 2a/h at the centre (compare with |w| / h at the centre)"
+                    .into(),
             points: curve.clone(),
         });
     }

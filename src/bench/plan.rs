@@ -196,7 +196,10 @@ mod tests {
     /// Riks has no order and no series tolerance: none is listed for it.
     #[test]
     fn only_the_anm_lists_its_order_and_tolerance() {
-        assert_eq!(Method::AnmPade.series_settings(15, 1e-6), ", N = 15, ε = 1e-6");
+        assert_eq!(
+            Method::AnmPade.series_settings(15, 1e-6),
+            ", N = 15, ε = 1e-6"
+        );
         assert_eq!(Method::Anm.series_settings(20, 1e-8), ", N = 20, ε = 1e-8");
         assert_eq!(Method::Riks.series_settings(15, 1e-6), "");
     }

@@ -64,12 +64,16 @@ fn read_state(directory: &Path, model: &str, load: f64) -> Option<ModelState> {
     let fields = spec.fields;
     let mut values = vec![0.0; mesh.nodes.len() * fields.len()];
     for (f, name) in fields.iter().enumerate() {
-        let array = piece.data.point.iter().find_map(|attribute| match attribute {
-            Attribute::DataArray(array) if array.name == *name => {
-                array.data.clone().cast_into::<f64>()
-            }
-            _ => None,
-        })?;
+        let array = piece
+            .data
+            .point
+            .iter()
+            .find_map(|attribute| match attribute {
+                Attribute::DataArray(array) if array.name == *name => {
+                    array.data.clone().cast_into::<f64>()
+                }
+                _ => None,
+            })?;
         for (n, value) in array.into_iter().enumerate() {
             values[n * fields.len() + f] = value;
         }
@@ -89,7 +93,10 @@ fn field_data_number(xml: &str, name: &str) -> Option<f64> {
     let block = &xml[xml.find("<FieldData>")?..xml.find("</FieldData>")?];
     let at = block.find(&format!("Name=\"{name}\""))?;
     let text = &block[at..];
-    text[text.find('>')? + 1..text.find('<')?].trim().parse().ok()
+    text[text.find('>')? + 1..text.find('<')?]
+        .trim()
+        .parse()
+        .ok()
 }
 
 /// Writes `compare_profiles.png/.svg` for the `models` that reached `load` (at least two), or
@@ -147,7 +154,11 @@ pub fn write_profile_overlay(
         }
     }
     let coordinate = if along_y { "Y" } else { "X" };
-    let (fixed, at) = if along_y { ("X", peak[0]) } else { ("Y", peak[1]) };
+    let (fixed, at) = if along_y {
+        ("X", peak[0])
+    } else {
+        ("Y", peak[1])
+    };
     let load_quantity = crate::results::load_quantity(scene);
     let plot = ProfilePlot {
         abscissa: Quantity::coordinate(coordinate),

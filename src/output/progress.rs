@@ -318,7 +318,12 @@ impl Progress {
     /// gives $`\lambda/\lambda_c`$ first.
     pub fn update_at_load(&self, value: f64, load: f64, detail: &str) {
         let ratio = self.target.critical_load.map(|critical| load / critical);
-        self.show(self.target.fraction_at_load(value, load), value, ratio, detail);
+        self.show(
+            self.target.fraction_at_load(value, load),
+            value,
+            ratio,
+            detail,
+        );
     }
 
     fn show(&self, fraction: f64, value: f64, ratio: Option<f64>, detail: &str) {

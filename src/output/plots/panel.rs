@@ -620,7 +620,11 @@ mod tests {
         assert_eq!(ticks.label(2e-4), "2.00e-4");
         let coordinate = RangedCoordf64::from(-5e-4..5e-4);
         for point in coordinate.key_points(ticks.count) {
-            assert!(!ticks.label(point).contains("e-1"), "{}", ticks.label(point));
+            assert!(
+                !ticks.label(point).contains("e-1"),
+                "{}",
+                ticks.label(point)
+            );
         }
     }
 

@@ -133,10 +133,7 @@ const LEVEL_COLOR: RGBColor = RGBColor(200, 30, 30);
 /// The abscissa range of the finite points, and the ordinate range from 0 (or below) with 6 %
 /// room — or around the data when it lies far from 0 (see [`plot_profiles`]) — including
 /// `level`; an error when no profile has a finite point.
-fn profile_ranges(
-    plot: &ProfilePlot,
-    level: Option<f64>,
-) -> io::Result<((f64, f64), (f64, f64))> {
+fn profile_ranges(plot: &ProfilePlot, level: Option<f64>) -> io::Result<((f64, f64), (f64, f64))> {
     let finite = plot
         .profiles
         .iter()
@@ -166,8 +163,8 @@ fn profile_ranges(
     } else {
         (x_low - 1.0, x_high + 1.0)
     };
-    let far_from_zero = (y_low > 0.0 && y_low > 0.25 * y_high)
-        || (y_high < 0.0 && -y_high > 0.25 * -y_low);
+    let far_from_zero =
+        (y_low > 0.0 && y_low > 0.25 * y_high) || (y_high < 0.0 && -y_high > 0.25 * -y_low);
     if far_from_zero && y_high > y_low {
         let room = 0.08 * (y_high - y_low);
         return Ok((x_range, (y_low - room, y_high + room)));
