@@ -382,9 +382,9 @@ impl RunData {
         let s = &self.summary;
         let last = self.points.last();
         let solver = &s["scene"]["solver"];
-        let target = solver["max_amplitude_over_h"].as_f64().or_else(|| {
-            solver["max_envelope_over_h"].as_f64().map(|t| 2.0 * t)
-        });
+        let target = solver["max_amplitude_over_h"]
+            .as_f64()
+            .or_else(|| solver["max_envelope_over_h"].as_f64().map(|t| 2.0 * t));
         let final_amplitude = last.map(|p| p.max_amplitude_over_h);
         let reached = !s["failed"].as_bool().unwrap_or(true)
             && match (final_amplitude, target) {

@@ -12,8 +12,7 @@ use std::process::Command;
 
 /// The array types meshio's VTU reader knows (`meshio/vtu/_vtu.py`, `vtu_to_numpy_type`).
 const MESHIO_TYPES: [&str; 10] = [
-    "Float32", "Float64", "Int8", "Int16", "Int32", "Int64", "UInt8", "UInt16", "UInt32",
-    "UInt64",
+    "Float32", "Float64", "Int8", "Int16", "Int32", "Int64", "UInt8", "UInt16", "UInt32", "UInt64",
 ];
 
 fn scratch_dir(name: &str) -> PathBuf {
@@ -31,7 +30,12 @@ fn run_model(model: &str) -> PathBuf {
         .args(["--set", &format!("model.name={model}")])
         .args(["--set", "mesh.nx=16", "--set", "mesh.ny=8"])
         .args(["--set", "solver.max_amplitude_over_h=1"])
-        .args(["--set", "output.plots=false", "--set", "validity.accept=all"])
+        .args([
+            "--set",
+            "output.plots=false",
+            "--set",
+            "validity.accept=all",
+        ])
         .args(["--set", "output.vtu_loads=[0.05]"])
         .output()
         .unwrap();
@@ -96,7 +100,11 @@ fn check_xml_shape(dir: &Path) -> usize {
     let pvd = files_below(dir, "pvd");
     for collection in &pvd {
         let xml = std::fs::read_to_string(collection).unwrap();
-        assert!(xml.contains("type=\"Collection\""), "{}", collection.display());
+        assert!(
+            xml.contains("type=\"Collection\""),
+            "{}",
+            collection.display()
+        );
         let mut previous = f64::NEG_INFINITY;
         for dataset in xml.split("<DataSet ").skip(1) {
             let attribute = |name: &str| {
@@ -104,10 +112,19 @@ fn check_xml_shape(dir: &Path) -> usize {
                 dataset[at..at + dataset[at..].find('"').unwrap()].to_string()
             };
             let time: f64 = attribute("timestep").parse().unwrap();
-            assert!(time > previous, "{}: times not increasing", collection.display());
+            assert!(
+                time > previous,
+                "{}: times not increasing",
+                collection.display()
+            );
             previous = time;
             let file = collection.parent().unwrap().join(attribute("file"));
-            assert!(file.is_file(), "{} lists a missing {}", collection.display(), file.display());
+            assert!(
+                file.is_file(),
+                "{} lists a missing {}",
+                collection.display(),
+                file.display()
+            );
         }
     }
     vtu.len() + pvd.len()
@@ -131,12 +148,18 @@ fn read_with_meshio(dirs: &[PathBuf]) {
     let python = match python_with_meshio() {
         Ok(python) => python,
         Err(reason) => {
-            eprintln!("skipped the meshio check: {reason} (set WRINKLE_PYTHON to a Python with meshio)");
+            eprintln!(
+                "skipped the meshio check: {reason} (set WRINKLE_PYTHON to a Python with meshio)"
+            );
             return;
         }
     };
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/support/read_with_meshio.py");
-    let output = Command::new(python).arg(script).args(dirs).output().unwrap();
+    let output = Command::new(python)
+        .arg(script)
+        .args(dirs)
+        .output()
+        .unwrap();
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert!(
         output.status.success(),
@@ -148,15 +171,24 @@ fn read_with_meshio(dirs: &[PathBuf]) {
 
 #[test]
 fn every_vtu_and_pvd_of_every_model_is_readable_by_meshio() {
-    let dirs: Vec<PathBuf> = ["reference-envelope", "complex-envelope", "fvk-plate", "pure-membrane"]
-        .into_iter()
-        .map(run_model)
-        .collect();
+    let dirs: Vec<PathBuf> = [
+        "reference-envelope",
+        "complex-envelope",
+        "fvk-plate",
+        "pure-membrane",
+    ]
+    .into_iter()
+    .map(run_model)
+    .collect();
     for dir in &dirs {
         check_xml_shape(dir);
         // The path as a time series: fields and surface at every step end.
         for collection in ["fields.pvd", "surface.pvd"] {
-            assert!(dir.join(collection).is_file(), "{}: no {collection}", dir.display());
+            assert!(
+                dir.join(collection).is_file(),
+                "{}: no {collection}",
+                dir.display()
+            );
         }
     }
     read_with_meshio(&dirs);
@@ -171,7 +203,10 @@ fn every_vtu_and_pvd_of_every_model_is_readable_by_meshio() {
 fn the_plate_vtu_gives_its_wavelength_not_a_zero_wavenumber() {
     let dir = run_model("fvk-plate");
     let xml = std::fs::read_to_string(dir.join("fields_final.vtu")).unwrap();
-    assert!(!xml.contains("Name=\"wavenumber\""), "a plate has no wavenumber");
+    assert!(
+        !xml.contains("Name=\"wavenumber\""),
+        "a plate has no wavenumber"
+    );
     let at = xml.find("Name=\"wavelength\"").expect("no wavelength");
     let text = &xml[at..];
     let value: f64 = text[text.find('>').unwrap() + 1..text.find('<').unwrap()]
