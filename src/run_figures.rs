@@ -56,7 +56,7 @@ pub fn wrinkled_zones(
         .map(|k| (0..across).map(|l| value(k, l)).fold(0.0, f64::max))
         .collect();
     let peak = section.iter().cloned().fold(0.0, f64::max);
-    if !(peak > 0.0) {
+    if peak.is_nan() || peak <= 0.0 {
         return Vec::new();
     }
     let coordinate = |k: usize| {
@@ -249,8 +249,7 @@ fn prebuckling_state(step_ends: &[Snap], critical: f64) -> Option<&Snap> {
     step_ends
         .iter()
         .filter(with_forces)
-        .filter(|snap| snap.load < critical)
-        .last()
+        .rfind(|snap| snap.load < critical)
         .or_else(|| step_ends.iter().find(with_forces))
 }
 
