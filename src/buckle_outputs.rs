@@ -6,7 +6,7 @@
 //! Nothing is recomputed: the mode, the pre-buckling state and the search come from the one
 //! threshold analysis (`crate::threshold::find_threshold`); the files only format them.
 
-use crate::error::{Error, io_error};
+use crate::error::{Error, io_error, output_directory_error};
 use crate::output::{
     FieldData, GridField, PointArray, Profile, ProfilePlot, Quantity, ReferenceLevel, RunDirectory,
     plot_profiles_with_level, write_bytes_atomically, write_fields_vtu, write_json,
@@ -146,8 +146,9 @@ fn write_buckle_outputs<M: EnergyModel>(
     directory: &Path,
 ) -> Result<Vec<PathBuf>, Error> {
     let (threshold, json) = (outputs.threshold, outputs.json);
-    let mut run_directory = RunDirectory::prepare(directory).map_err(io_error(directory))?;
-    let dir = run_directory.root().to_path_buf();
+    let mut run_directory =
+        RunDirectory::open(directory).map_err(output_directory_error(directory))?;
+    let dir = run_directory.staging().to_path_buf();
     let mut files = write_mode(scene, problem, layout, threshold, &dir)?;
     if !outputs.evaluations.is_empty() {
         files.extend(write_search(scene, threshold, outputs.evaluations, &dir)?);
@@ -156,9 +157,10 @@ fn write_buckle_outputs<M: EnergyModel>(
     write_json(&path, json).map_err(io_error(&path))?;
     files.push(path);
     run_directory.record(&files).map_err(io_error(&dir))?;
-    let path = run_directory.write_summary(json).map_err(io_error(&dir))?;
-    files.push(path);
-    Ok(files)
+    run_directory.write_summary(json).map_err(io_error(&dir))?;
+    let names = run_directory.files().to_vec();
+    let root = run_directory.commit().map_err(io_error(directory))?;
+    Ok(names.iter().map(|name| root.join(name)).collect())
 }
 
 /// `mode.vtu` (the first mode's fields, scaled to a largest deflection field of 1, with the

@@ -6,6 +6,7 @@
 //! [`Trace`]; the physical deflection is read through the field roles ([`crate::physics::Snapshot`]).
 
 use crate::error::{Error, io_error};
+use crate::output::run_directory::SERIES_DIRECTORY;
 use crate::output::{
     ClosedFormCurve, FieldData, GridField, LoadMarker, PointArray, Profile, ProfilePlot, Quantity,
     ReferenceLevel, Report, ReportFigure, Response, ResponsePoint, RunDirectory, SeriesEntry,
@@ -236,9 +237,6 @@ fn write_series(context: &RunContext, trace: &Trace, dir: &Path) -> Result<Vec<P
     }
     Ok(files)
 }
-
-/// The folder of the run directory that holds the time series' VTU files.
-const SERIES_DIRECTORY: &str = "series";
 
 /// Nodal physical amplitude of envelope models (`amplitude`, mm) and, for a complex envelope,
 /// the local wavenumber (`local_wavenumber`, 1/mm).

@@ -39,13 +39,13 @@ impl ModelState {
 /// Reads `MODEL/fields_load_L.vtu`: the Q8 mesh, the model's fields node-major, the carrier
 /// wavenumber of the field data (0 for a plate). `None` when the file is missing (the path did
 /// not reach the load) or not readable.
-fn read_state(directory: &Path, model: &str, load: f64) -> Option<ModelState> {
+fn read_state(directory: &Path, model: &str, load: f64, requested: &[f64]) -> Option<ModelState> {
     use vtkio::model::{Attribute, DataSet, Piece, VertexNumbers};
     let spec = wrinkle_models::catalogue()
         .into_iter()
         .find(|spec| spec.name == model)?;
     let layout = Layout::from_spec(spec).ok()?;
-    let path = directory.join(model).join(fields_file_at(load));
+    let path = directory.join(model).join(fields_file_at(load, requested));
     let xml = std::fs::read_to_string(&path).ok()?;
     let vtk = vtkio::Vtk::parse_xml(xml.as_bytes()).ok()?;
     let DataSet::UnstructuredGrid { pieces, .. } = vtk.data else {
@@ -109,9 +109,18 @@ pub fn write_profile_overlay(
     directory: &Path,
 ) -> Result<(), Error> {
     let direction = scene.model.direction_degrees.to_radians();
+    // Every model ran with the scene's VTU loads and `load` after them: the file names come
+    // from that list (`fields_file_at` keeps them distinct).
+    let requested: Vec<f64> = scene
+        .output
+        .vtu_loads
+        .iter()
+        .copied()
+        .chain([load])
+        .collect();
     let states: Vec<ModelState> = models
         .iter()
-        .filter_map(|model| read_state(directory, model, load))
+        .filter_map(|model| read_state(directory, model, load, &requested))
         .collect();
     if states.len() < 2 {
         return Ok(());

@@ -49,7 +49,7 @@ use std::path::{Path, PathBuf};
 /// Every output name of a run, `*` matching any characters: the legacy outputs and
 /// `local_wavenumber.*`. A file so named in a run directory with a wrinkle summary is the run's
 /// own even when the summary does not list it.
-pub const OUTPUT_PATTERNS: [&str; 15] = [
+pub const OUTPUT_PATTERNS: [&str; 20] = [
     LEGACY_OUTPUT_PATTERNS[0],
     LEGACY_OUTPUT_PATTERNS[1],
     LEGACY_OUTPUT_PATTERNS[2],
@@ -65,7 +65,17 @@ pub const OUTPUT_PATTERNS: [&str; 15] = [
     LEGACY_OUTPUT_PATTERNS[12],
     LEGACY_OUTPUT_PATTERNS[13],
     "local_wavenumber.*",
+    "*.pvd",
+    "membrane_force_*.png",
+    "membrane_force_*.svg",
+    "wrinkles_zone_*.png",
+    "wrinkles_zone_*.svg",
 ];
+
+/// The folder of a run directory that holds the path's time series (`series/*.vtu`, listed in
+/// the summary as `series/NAME`): the run's own, with every file in it, when the directory holds
+/// a wrinkle summary.
+pub const SERIES_DIRECTORY: &str = "series";
 
 /// Suffix of the lock file `PARENT/.NAME.wrinkle-lock`.
 pub const LOCK_SUFFIX: &str = ".wrinkle-lock";
@@ -439,6 +449,10 @@ fn discard(old: &Path, into: &Path, notes: &mut Vec<String>) -> io::Result<()> {
     let mut kept = Vec::new();
     for entry in contents.entries {
         let path = old.join(&entry);
+        if contents.series_is_ours && entry == SERIES_DIRECTORY && path.is_dir() {
+            fs::remove_dir_all(&path).map_err(|error| with_path(&path, error))?;
+            continue;
+        }
         if contents.ours.contains(&entry) {
             match fs::remove_file(&path) {
                 Err(error) if error.kind() != io::ErrorKind::NotFound => {
@@ -535,6 +549,8 @@ struct RunContents {
     ours: BTreeSet<String>,
     /// The names under `files` in its `summary.json` that are the run's regular files.
     listed: Vec<String>,
+    /// Whether [`SERIES_DIRECTORY`] is the run's (a wrinkle summary is there): removed whole.
+    series_is_ours: bool,
 }
 
 impl RunContents {
@@ -584,6 +600,7 @@ impl RunContents {
             entries,
             ours,
             listed,
+            series_is_ours: is_wrinkle_summary,
         })
     }
 
