@@ -53,6 +53,24 @@ fn names(directory: &Path) -> BTreeSet<String> {
         .collect()
 }
 
+/// Names of the files of `directory` and of its folders (`series/fields_0000.vtu`).
+fn files_within(directory: &Path) -> BTreeSet<String> {
+    let mut files = BTreeSet::new();
+    for name in names(directory) {
+        let path = directory.join(&name);
+        if path.is_dir() {
+            files.extend(
+                files_within(&path)
+                    .into_iter()
+                    .map(|inner| format!("{name}/{inner}")),
+            );
+        } else {
+            files.insert(name);
+        }
+    }
+    files
+}
+
 /// The run in `out` is complete and consistent: its `summary.json` lists exactly the files
 /// there besides `foreign` (the user's files, which a kill in the instant between the swap and
 /// the cleanup leaves in the sibling for the next run to move back), and agrees with its
@@ -66,7 +84,7 @@ fn consistent_run(out: &Path, foreign: &[&str]) -> serde_json::Value {
         .iter()
         .map(|name| name.as_str().unwrap().to_string())
         .collect();
-    let mut present = names(out);
+    let mut present = files_within(out);
     for name in foreign {
         present.remove(*name);
     }
