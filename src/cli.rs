@@ -71,7 +71,8 @@ pub enum Command {
         /// Scene and overrides.
         #[command(flatten)]
         scene: SceneArguments,
-        /// Comma-separated model names (default: every registered model of a plane domain).
+        /// Comma-separated model names (default: every hand-written registered model of a plane
+        /// domain; the DSL-derived models are named explicitly).
         #[arg(long, value_delimiter = ',')]
         models: Vec<String>,
         /// Override a scene key for one model only, `MODEL:KEY=VALUE` (repeatable), e.g.
@@ -295,7 +296,10 @@ fn run(
 
 /// `wrinkle compare`: every registered model that runs on the scene's plane domain (roles that
 /// give a plane [`Layout`](crate::physics::Layout): in-plane displacements along X and Y — not
-/// the beam models of a line) unless `models` names some.
+/// the beam models of a line) and is written by hand — the models the DSL derives from a
+/// microscopic energy ([`ModelSpec::derivation`](wrinkle_runtime::model::ModelSpec::derivation))
+/// reproduce hand-written ones or are research variants, compared when named — unless `models`
+/// names some.
 fn compare(
     scene: &Scene,
     models: &[String],
@@ -307,6 +311,7 @@ fn compare(
         wrinkle_models::catalogue()
             .into_iter()
             .filter(|spec| crate::physics::Layout::from_spec(spec).is_ok())
+            .filter(|spec| spec.derivation.is_none())
             .map(|spec| spec.name.to_string())
             .collect()
     } else {
