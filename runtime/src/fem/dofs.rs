@@ -364,6 +364,57 @@ impl DofMap {
     pub fn is_prescribed(&self, g: usize) -> bool {
         self.free_index[g].is_none()
     }
+
+    /// The rigid in-plane motions $`u = a - \theta Y`$, $`v = b + \theta X`$ that the
+    /// prescribed values of the in-plane fields `in_plane` (X and Y displacement) leave free:
+    /// those the in-plane stiffness cannot resist (a singular problem). A translation along X
+    /// is free when no $`u`$ is prescribed, along Y when no $`v`$ is; with both, a rotation is
+    /// free exactly when every prescribed $`u`$ lies on one line $`Y = Y^*`$ and every
+    /// prescribed $`v`$ on one line $`X = X^*`$ (it turns about $`(X^*, Y^*)`$). Positions
+    /// agree within $`10^{-9}`$ of the mesh's extent.
+    pub fn free_rigid_motions(&self, mesh: &Mesh, in_plane: [usize; 2]) -> Vec<RigidMotion> {
+        let [x0, x1, y0, y1] = mesh.bounds();
+        let tolerance = 1e-9 * (x1 - x0).abs().max((y1 - y0).abs());
+        // The one coordinate every prescribed node of a component shares, if any.
+        let mut lines: [Option<Option<f64>>; 2] = [None, None];
+        for (node, position) in mesh.nodes.iter().enumerate() {
+            for (c, &field) in in_plane.iter().enumerate() {
+                if self.free(node, field).is_some() {
+                    continue;
+                }
+                // u fixes the line of constant Y, v the line of constant X.
+                let coordinate = position[1 - c];
+                lines[c] = match lines[c] {
+                    None => Some(Some(coordinate)),
+                    Some(Some(line)) if (line - coordinate).abs() <= tolerance => Some(Some(line)),
+                    _ => Some(None),
+                };
+            }
+        }
+        let mut free = Vec::new();
+        match lines {
+            [None, None] => free.extend([RigidMotion::TranslationX, RigidMotion::TranslationY]),
+            [None, _] => free.push(RigidMotion::TranslationX),
+            [_, None] => free.push(RigidMotion::TranslationY),
+            [Some(Some(y)), Some(Some(x))] => free.push(RigidMotion::Rotation { centre: [x, y] }),
+            _ => {}
+        }
+        free
+    }
+}
+
+/// A rigid in-plane motion of the sheet (see [`DofMap::free_rigid_motions`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum RigidMotion {
+    /// $`u = a`$.
+    TranslationX,
+    /// $`v = b`$.
+    TranslationY,
+    /// A rotation about `centre`.
+    Rotation {
+        /// The fixed point $`(X^*, Y^*)`$.
+        centre: [f64; 2],
+    },
 }
 
 #[cfg(test)]
@@ -385,6 +436,42 @@ mod tests {
             DofMap::new(&mesh, 2, &conditions),
             Err(DofError::Conflict { .. })
         ));
+    }
+
+    #[test]
+    fn rigid_motions_left_free_by_the_constraints_are_named() {
+        let mesh = Mesh::rectangle(4.0, 2.0, 4, 2, 1.0).unwrap();
+        let free = |conditions: &[DirichletCondition]| {
+            DofMap::new(&mesh, 3, conditions)
+                .unwrap()
+                .free_rigid_motions(&mesh, [0, 1])
+        };
+        let fixed = DirichletCondition::fixed;
+        assert_eq!(
+            free(&[fixed("left", 2)]),
+            [RigidMotion::TranslationX, RigidMotion::TranslationY]
+        );
+        assert_eq!(free(&[fixed("centre", 0)]), [RigidMotion::TranslationY]);
+        assert_eq!(
+            free(&[fixed("centre", 0), fixed("centre", 1)]),
+            [RigidMotion::Rotation { centre: [2.0, 1.0] }]
+        );
+        // The biaxial supports, a clamped edge, and u on one edge with v at one point.
+        assert!(
+            free(&[
+                fixed("centre", 0),
+                fixed("centre", 1),
+                fixed("right_middle", 1)
+            ])
+            .is_empty()
+        );
+        assert!(free(&[fixed("left", 0), fixed("left", 1)]).is_empty());
+        assert!(free(&[fixed("left", 0), fixed("bottom_left", 1)]).is_empty());
+        // u along the bottom edge (one line Y = 0) and v at one corner: turns about it.
+        assert_eq!(
+            free(&[fixed("bottom", 0), fixed("bottom_right", 1)]),
+            [RigidMotion::Rotation { centre: [4.0, 0.0] }]
+        );
     }
 
     #[test]

@@ -29,6 +29,27 @@ pub struct EdgeTraction {
     pub proportional: bool,
 }
 
+/// A traction given in the frame of the boundary (force per unit length, N/mm): a normal
+/// component $`t_n`$ along the **outward** unit normal $`\mathbf n`$ (positive pulls, negative
+/// pushes) and a tangential one $`t_s`$ along $`\mathbf s`$, the normal turned a quarter turn
+/// counter-clockwise (the direction in which the boundary runs with the domain on its left):
+/// $`\mathbf t = t_n\mathbf n + t_s\mathbf s`$. The normal of a straight segment is that of
+/// its chord (exactly $`(\pm1, 0)`$ or $`(0, \pm1)`$ on an axis-parallel edge); on a curved one
+/// it is evaluated at each Gauss point. Outward is decided by the element the segment bounds.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NormalTraction {
+    /// Edge name.
+    pub edge: String,
+    /// Field indices of the X and Y displacement.
+    pub fields: [usize; 2],
+    /// $`t_n`$, along the outward normal.
+    pub normal: f64,
+    /// $`t_s`$, along the boundary.
+    pub tangential: f64,
+    /// `true`: scaled by the load parameter ($`F_1`$); `false`: fixed ($`F_0`$).
+    pub proportional: bool,
+}
+
 /// A concentrated load on one nodal component of one field at every node of a named point
 /// set (a beam's end force; on a Hermite slope, an end moment).
 #[derive(Clone, Debug, PartialEq)]
@@ -62,6 +83,8 @@ pub struct BodyLoad {
 pub struct Loads {
     /// Edge tractions (plane meshes).
     pub tractions: Vec<EdgeTraction>,
+    /// Edge tractions in the boundary's normal–tangential frame (plane meshes).
+    pub normal_tractions: Vec<NormalTraction>,
     /// Point loads.
     pub point_loads: Vec<PointLoad>,
     /// Body loads.
@@ -96,6 +119,14 @@ pub enum LoadError {
         /// Point sets that exist.
         available: String,
     },
+    /// A segment of an edge set that is not a side of any element (no outward normal).
+    #[error("edge `{edge}`: segment {nodes:?} is not a side of any element")]
+    NotABoundarySide {
+        /// The edge set.
+        edge: String,
+        /// The segment's nodes `[end, end, middle]`.
+        nodes: [usize; 3],
+    },
     /// A point load on a component the element does not carry.
     #[error("point load on the {component} of field {field} at `{point}`, but {element} nodes carry no {component}", component = component.name())]
     MissingComponent {
@@ -108,6 +139,43 @@ pub enum LoadError {
         /// The mesh's element.
         element: super::element::ElementKind,
     },
+}
+
+/// The sides of the elements by their middle node: `(first end, second end)` in the element's
+/// counter-clockwise order (Q8: corners $`k`$, $`k+1`$ around mid-side node $`4 + k`$).
+fn element_sides(mesh: &Mesh) -> std::collections::HashMap<usize, Vec<(usize, usize)>> {
+    let mut sides: std::collections::HashMap<usize, Vec<(usize, usize)>> =
+        std::collections::HashMap::new();
+    if mesh.kind != super::element::ElementKind::Quad8 {
+        return sides;
+    }
+    for element in mesh.elements() {
+        for k in 0..4 {
+            sides
+                .entry(element[4 + k])
+                .or_default()
+                .push((element[k], element[(k + 1) % 4]));
+        }
+    }
+    sides
+}
+
+/// $`+1`$ when segment `[a, b, middle]` runs as its element's side (counter-clockwise),
+/// $`-1`$ when against it, `None` when it is no element's side.
+fn segment_orientation(
+    sides: &std::collections::HashMap<usize, Vec<(usize, usize)>>,
+    segment: &[usize; 3],
+) -> Option<f64> {
+    let [a, b, middle] = *segment;
+    sides.get(&middle)?.iter().find_map(|&side| {
+        if side == (a, b) {
+            Some(1.0)
+        } else if side == (b, a) {
+            Some(-1.0)
+        } else {
+            None
+        }
+    })
 }
 
 /// Names of a set map, for messages.
@@ -125,6 +193,9 @@ impl LoadVectors {
         };
         for traction in &loads.tractions {
             vectors.add_traction(mesh, dofs, traction)?;
+        }
+        for traction in &loads.normal_tractions {
+            vectors.add_normal_traction(mesh, dofs, traction)?;
         }
         for load in &loads.point_loads {
             vectors.add_point_load(mesh, dofs, load)?;
@@ -175,6 +246,69 @@ impl LoadVectors {
                     for c in 0..2 {
                         if let Some(i) = dofs.free(node, t.fields[c]) {
                             target[i] += t.traction[c] * n[k] * ds * w;
+                        }
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// One traction in the boundary's frame: 3-point Gauss on each quadratic segment, the
+    /// outward normal from the element whose side the segment is.
+    fn add_normal_traction(
+        &mut self,
+        mesh: &Mesh,
+        dofs: &DofMap,
+        t: &NormalTraction,
+    ) -> Result<(), LoadError> {
+        let segments = mesh
+            .edges
+            .get(&t.edge)
+            .ok_or_else(|| LoadError::UnknownEdge {
+                edge: t.edge.clone(),
+                available: names(&mesh.edges),
+            })?;
+        let sides = element_sides(mesh);
+        let rule = quadratic_line_rule();
+        let target = self.target(t.proportional);
+        for seg in segments {
+            let orientation =
+                segment_orientation(&sides, seg).ok_or_else(|| LoadError::NotABoundarySide {
+                    edge: t.edge.clone(),
+                    nodes: *seg,
+                })?;
+            let x: Vec<[f64; 2]> = seg.iter().map(|&n| mesh.nodes[n]).collect();
+            let chord = [x[1][0] - x[0][0], x[1][1] - x[0][1]];
+            let straight = (0..2).all(|c| {
+                let middle = 0.5 * (x[0][c] + x[1][c]);
+                (x[2][c] - middle).abs() <= 1e-12 * chord[0].abs().max(chord[1].abs())
+            });
+            for (n, w) in &rule {
+                let s = n[1] - n[0];
+                let dn = [s - 0.5, s + 0.5, -2.0 * s];
+                let dx = [
+                    dn[0] * x[0][0] + dn[1] * x[1][0] + dn[2] * x[2][0],
+                    dn[0] * x[0][1] + dn[1] * x[1][1] + dn[2] * x[2][1],
+                ];
+                let ds = (dx[0] * dx[0] + dx[1] * dx[1]).sqrt();
+                let along = if straight { chord } else { dx };
+                let length = (along[0] * along[0] + along[1] * along[1]).sqrt();
+                // Outward normal: the run direction turned clockwise (the domain is on the
+                // left of a side run counter-clockwise); s: the normal turned counter-clockwise.
+                let normal = [
+                    orientation * along[1] / length,
+                    -(orientation * along[0]) / length,
+                ];
+                let tangent = [-normal[1], normal[0]];
+                let traction = [
+                    t.normal * normal[0] + t.tangential * tangent[0],
+                    t.normal * normal[1] + t.tangential * tangent[1],
+                ];
+                for (k, &node) in seg.iter().enumerate() {
+                    for c in 0..2 {
+                        if let Some(i) = dofs.free(node, t.fields[c]) {
+                            target[i] += traction[c] * n[k] * ds * w;
                         }
                     }
                 }
@@ -241,6 +375,57 @@ impl LoadVectors {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn normal_tractions_push_along_the_outward_normal_of_each_edge() {
+        let mesh = Mesh::rectangle(3.0, 2.0, 3, 4, 2.0).unwrap();
+        let dofs = DofMap::new(&mesh, 2, &[]).unwrap();
+        let traction = |edge: &str, normal, tangential| NormalTraction {
+            edge: edge.into(),
+            fields: [0, 1],
+            normal,
+            tangential,
+            proportional: false,
+        };
+        let resultant = |tractions: Vec<NormalTraction>| {
+            let loads = Loads {
+                normal_tractions: tractions,
+                ..Loads::default()
+            };
+            let vectors = LoadVectors::assemble(&mesh, &dofs, &loads).unwrap();
+            let mut sum = [0.0; 2];
+            for (i, f) in vectors.fixed.iter().enumerate() {
+                sum[dofs.global_of_free(i) % 2] += f;
+            }
+            sum
+        };
+        // Outward: −X on `left`, +X on `right`, −Y on `bottom`, +Y on `top`; the tangent is the
+        // normal turned counter-clockwise.
+        let close = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).abs() + (a[1] - b[1]).abs() < 1e-12;
+        assert!(close(
+            resultant(vec![traction("left", 1.5, 0.0)]),
+            [-3.0, 0.0]
+        ));
+        assert!(close(
+            resultant(vec![traction("right", 1.5, 0.0)]),
+            [3.0, 0.0]
+        ));
+        assert!(close(
+            resultant(vec![traction("bottom", 1.5, 0.0)]),
+            [0.0, -4.5]
+        ));
+        assert!(close(
+            resultant(vec![traction("top", 0.0, 1.0)]),
+            [-3.0, 0.0]
+        ));
+        assert!(close(
+            resultant(vec![traction("right", 0.0, 1.0)]),
+            [0.0, 2.0]
+        ));
+        // A uniform pressure on the closed boundary is self-equilibrated.
+        let all = ["left", "right", "bottom", "top"].map(|edge| traction(edge, -0.7, 0.0));
+        assert!(close(resultant(all.to_vec()), [0.0, 0.0]));
+    }
 
     #[test]
     fn traction_resultant_equals_traction_times_length() {

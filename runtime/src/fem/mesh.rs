@@ -281,7 +281,8 @@ impl Mesh {
     /// `grading` (1 = uniform). Edges are named `left` (X = 0), `right` (X = lx), `bottom` (Y = 0),
     /// `top` (Y = ly); segments run in increasing coordinate. Mid-side nodes sit at edge midpoints,
     /// so every element is an affine rectangle. Point sets `centre`, `left_middle`,
-    /// `right_middle`, `bottom_middle`, `top_middle` hold the node nearest to each.
+    /// `right_middle`, `bottom_middle`, `top_middle` hold the node nearest to each, and
+    /// `bottom_left`, `bottom_right`, `top_left`, `top_right` the corners.
     pub fn rectangle(
         lx: f64,
         ly: f64,
@@ -301,13 +302,17 @@ impl Mesh {
             mesh.insert_edge_set(&name, segments)?;
         }
         mesh.grid = Some(StructuredGrid { xs, ys });
-        // Points for minimal in-plane supports: the centre, and the middle of each edge.
+        // Points for minimal in-plane supports: the centre, the middle of each edge, the corners.
         for (name, point) in [
             ("centre", [0.5 * lx, 0.5 * ly]),
             ("left_middle", [0.0, 0.5 * ly]),
             ("right_middle", [lx, 0.5 * ly]),
             ("bottom_middle", [0.5 * lx, 0.0]),
             ("top_middle", [0.5 * lx, ly]),
+            ("bottom_left", [0.0, 0.0]),
+            ("bottom_right", [lx, 0.0]),
+            ("top_left", [0.0, ly]),
+            ("top_right", [lx, ly]),
         ] {
             let node = mesh.nearest_node(point);
             mesh.insert_point_set(name, vec![node])?;
