@@ -377,6 +377,10 @@ pub fn buckle_summary(scene: &Scene, report: &ThresholdSummary) -> String {
         LoadKind::Strip => lines.push(format!(
             "critical load: λ_c = {critical:.6e} mm (end displacement)"
         )),
+        LoadKind::Boundaries => lines.push(format!(
+            "critical load: λ_c = {critical:.6e} {}",
+            crate::threshold::load_unit(scene)
+        )),
     }
     match (report.wavenumber, report.wavelength) {
         (Some(q), _) => lines.push(format!(

@@ -168,6 +168,10 @@ pub fn load_quantity(scene: &Scene) -> Quantity {
     match scene.load.kind {
         LoadKind::Biaxial => Quantity::biaxial_load(),
         LoadKind::Strip => Quantity::end_displacement(),
+        LoadKind::Boundaries if crate::setup::load_is_displacement(scene) => {
+            Quantity::new("load parameter", "λ", "mm")
+        }
+        LoadKind::Boundaries => Quantity::new("load parameter", "λ", "N/mm"),
     }
 }
 

@@ -10,8 +10,8 @@
 use super::declare::{scene_enum, scene_schema};
 use super::keys::{Alias, Schema, Unit};
 use super::kinds::{
-    AutoOrNumber, ChoiceList, Count, Flag, Float, FloatList, ModelName, Scalar, Table, Text,
-    number_or_auto, one_of,
+    AutoOrNumber, Boundary, BoundarySpec, ChoiceList, Count, Flag, Float, FloatList, ModelName,
+    OptionalPath, Scalar, Table, Text, number_or_auto, one_of,
 };
 use std::collections::BTreeMap;
 use toml::Value;
@@ -131,17 +131,28 @@ scene_schema! {
         /// edges (clamped-edge layers are thin)
         grading => grading: f64 = 1.0, Float::at_least(1.0).at_most(MAX_ELEMENT_ASPECT_RATIO),
             Unit::NONE;
+        /// a Gmsh MSH 4.1 file (ASCII or binary) of 8-node quadrilaterals, relative to the
+        /// scene file, whose physical groups name the boundaries; `""`: the structured
+        /// rectangle of `geometry` with `nx`, `ny`, `grading` (which a file ignores)
+        file => file: String = String::new(), OptionalPath, Unit::NONE;
     }
 
     /// Loading.
     [load] LoadSpec {
         /// `"biaxial"`: example 1 — tension $`N_Y`$ fixed on $`Y = 0, L_Y`$, load
         /// $`\lambda = -N_X`$ (compression on $`X = 0, L_X`$). `"strip"`: example 2 — short
-        /// sides clamped, $`\lambda`$ = prescribed end displacement
+        /// sides clamped, $`\lambda`$ = prescribed end displacement. Both are presets of
+        /// `load.boundary` conditions (`docs/scenes.md`, "Boundaries"). `"boundaries"`: no
+        /// preset, only `load.boundary`
         kind => kind: LoadKind = LoadKind::Biaxial, one_of::<LoadKind>(), Unit::NONE;
         /// tension $`N_Y`$ (biaxial only; the strip ignores it, with a note)
         tension_y => tension_y: f64 = 10.0, Float::at_least(0.0), Unit::N_PER_MM,
             note "and the tension strain $`N_Y/(Eh)`$ at most 1";
+        /// conditions on named boundaries, the tables `[load.boundary.NAME]` (below): an
+        /// entry replaces, part by part (`transverse`, `in_plane`), what the preset `kind`
+        /// puts on that boundary; with `kind = "boundaries"` they are the whole problem
+        boundary => boundary: BTreeMap<String, BoundarySpec> = BTreeMap::new(),
+            Table::of(Boundary, "boundary names"), Unit::NONE;
     }
 
     /// Settings of the path following used by `wrinkle run`.
@@ -337,6 +348,8 @@ scene_enum! {
         Biaxial = "biaxial",
         /// Example 2: short sides clamped, $`\lambda`$ = prescribed end displacement (mm).
         Strip = "strip",
+        /// No preset: the conditions and loads of `load.boundary` only.
+        Boundaries = "boundaries",
     }
 }
 

@@ -20,13 +20,16 @@ pub fn load_unit(scene: &Scene) -> &'static str {
     match scene.load.kind {
         LoadKind::Biaxial => "N/mm",
         LoadKind::Strip => "mm",
+        LoadKind::Boundaries if crate::setup::load_is_displacement(scene) => "mm",
+        LoadKind::Boundaries => "N/mm",
     }
 }
 
 /// The closed-form threshold (THEORY.md §8, eq. 42 minimised) and its wavenumber when the scene
-/// is a clamped rectangle under biaxial load with waves along X.
+/// is a clamped rectangle under biaxial load with waves along X: boundary conditions that are
+/// the `biaxial` preset's, whether written by the preset or by hand.
 pub fn closed_form_threshold(scene: &Scene) -> Option<(f64, f64)> {
-    (scene.load.kind == LoadKind::Biaxial && scene.model.direction_degrees == 0.0)
+    (crate::setup::is_biaxial_rectangle(scene) && scene.model.direction_degrees == 0.0)
         .then(|| scene.clamped_rectangle().critical_point())
         .flatten()
 }

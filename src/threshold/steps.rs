@@ -368,6 +368,7 @@ fn direction_hint(scene: &Scene) -> String {
     let (compressed, expected) = match scene.load.kind {
         LoadKind::Biaxial => ("along X (λ = −N_X)", 0.0),
         LoadKind::Strip => ("across the strip, along Y, near its middle", 90.0),
+        LoadKind::Boundaries => return String::new(),
     };
     let along = if expected == 0.0 {
         theta.cos().abs()

@@ -7,11 +7,13 @@
 //! existing kind is one declaration in `schema.rs`. `value` holds the two traits and what
 //! every kind shares; `number`, `name` and `collection` the kinds themselves.
 
+mod boundary;
 mod collection;
 mod name;
 mod number;
 mod value;
 
+pub use boundary::{Boundary, BoundarySpec, Component, InPlane, OptionalPath, Transverse};
 pub use collection::{ChoiceList, FloatList, Table};
 pub use name::{Choices, Flag, ModelName, Text, one_of};
 pub use number::{AutoOrNumber, Count, Float, number_or_auto};
