@@ -306,9 +306,9 @@ impl LoadVectors {
                     t.normal * normal[1] + t.tangential * tangent[1],
                 ];
                 for (k, &node) in seg.iter().enumerate() {
-                    for c in 0..2 {
-                        if let Some(i) = dofs.free(node, t.fields[c]) {
-                            target[i] += traction[c] * n[k] * ds * w;
+                    for (&field, &component) in t.fields.iter().zip(&traction) {
+                        if let Some(i) = dofs.free(node, field) {
+                            target[i] += component * n[k] * ds * w;
                         }
                     }
                 }
