@@ -257,7 +257,7 @@ fn wrong_types_say_what_was_expected_and_what_was_found() {
         (
             "[load]\nkind = \"shear\"\n",
             "load.kind",
-            "expected one of \"biaxial\", \"strip\", got \"shear\"",
+            "expected one of \"biaxial\", \"strip\", \"boundaries\", got \"shear\"",
         ),
         (
             "geometry = 3\n",
