@@ -66,7 +66,7 @@ pub use wavenumber_model::{CarrierThreshold, WAVENUMBER_MODEL_KEY, WavenumberMod
 
 use crate::error::Error;
 use crate::physics::{Layout, Snapshot, wavelength_along_line};
-use crate::scene::{LoadKind, Scene, Wavenumber};
+use crate::scene::{LoadKind, PathMethod, Scene, Wavenumber};
 use crate::setup::{build_problem, configure_model, layout_of, unknown_model};
 use std::f64::consts::PI;
 use steps::ThresholdSteps;
@@ -252,10 +252,20 @@ pub fn buckle(scene: &Scene, quiet: bool) -> Result<Threshold, Error> {
         .unwrap_or_else(|| Err(unknown_model(scene)))
 }
 
-/// Notes for keys the scene gives that its load does not use: `load.tension_y` under the
-/// strip load (example 2 has no tension).
+/// Notes for keys the scene gives that it does not use: `load.tension_y` under the strip load
+/// (example 2 has no tension); the ANM's settings (`solver.order`, `solver.series_tolerance`,
+/// `solver.pade`) under Riks, which has no series.
 fn unused_keys_notes(scene: &Scene) -> Vec<String> {
     let mut notes = Vec::new();
+    if scene.solver.method == PathMethod::Riks {
+        for key in ["solver.order", "solver.series_tolerance", "solver.pade"] {
+            if scene.was_given(key) {
+                notes.push(format!(
+                    "`{key}` is ignored: it sets the ANM's series, and `solver.method = \"riks\"` has none"
+                ));
+            }
+        }
+    }
     if scene.load.kind == LoadKind::Strip && scene.was_given("load.tension_y") {
         notes.push(format!(
             "`load.tension_y` = {} is ignored: the strip load (`load.kind = \"strip\"`) has no tension",

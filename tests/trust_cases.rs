@@ -383,3 +383,31 @@ fn tension_given_to_the_strip_is_noted() {
     let notes = threshold["notes"].to_string();
     assert!(notes.contains("`load.tension_y` = 5 is ignored"), "{notes}");
 }
+
+/// The ANM's settings given with Riks are not used: each is named in a note.
+#[test]
+fn anm_settings_given_to_riks_are_noted() {
+    let output = wrinkle(&[
+        "buckle",
+        "-q",
+        "--json",
+        "--set",
+        "solver.method=riks",
+        "--set",
+        "solver.order=10",
+        "--set",
+        "solver.pade=false",
+        "--set",
+        "mesh.nx=16",
+        "--set",
+        "mesh.ny=8",
+    ])
+    .output()
+    .unwrap();
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let threshold: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    let notes = threshold["notes"].to_string();
+    assert!(notes.contains("`solver.order` is ignored"), "{notes}");
+    assert!(notes.contains("`solver.pade` is ignored"), "{notes}");
+    assert!(!notes.contains("series_tolerance"), "{notes}");
+}
