@@ -200,7 +200,9 @@ fn wrong_types_are_refused_for_every_key() {
                 panic!("{key} = {value}: panicked");
             };
             if let Verdict::Refused(named) = &verdict {
-                assert_eq!(named, key, "{key} = {value}");
+                // A table key may name the entry inside it (`load.boundary.a`).
+                let inside = named.starts_with(&format!("{key}."));
+                assert!(named == key || inside, "{key} = {value}: named {named}");
             }
         }
     }
