@@ -112,7 +112,7 @@ mod tests {
             .collect();
         assert_eq!(times, [0.0, 0.1, 0.1f64.next_up()]);
         assert!(xml.contains("file=\"series/fields_0002.vtu\""));
-        for bad in ["", "/tmp/a.vtu", "../a.vtu"] {
+        for bad in ["", "/a.vtu", "../a.vtu"] {
             let entry = SeriesEntry {
                 load: 0.0,
                 file: bad.into(),

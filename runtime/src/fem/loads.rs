@@ -222,25 +222,13 @@ impl LoadVectors {
         dofs: &DofMap,
         t: &EdgeTraction,
     ) -> Result<(), LoadError> {
-        let segments = mesh
-            .edges
-            .get(&t.edge)
-            .ok_or_else(|| LoadError::UnknownEdge {
-                edge: t.edge.clone(),
-                available: names(&mesh.edges),
-            })?;
+        let segments = edge_segments(mesh, &t.edge)?;
         let rule = quadratic_line_rule();
         let target = self.target(t.proportional);
         for seg in segments {
             let x: Vec<[f64; 2]> = seg.iter().map(|&n| mesh.nodes[n]).collect();
             for (n, w) in &rule {
-                // s at this point from the end-node functions: recover dN/ds.
-                let s = n[1] - n[0];
-                let dn = [s - 0.5, s + 0.5, -2.0 * s];
-                let dx = [
-                    dn[0] * x[0][0] + dn[1] * x[1][0] + dn[2] * x[2][0],
-                    dn[0] * x[0][1] + dn[1] * x[1][1] + dn[2] * x[2][1],
-                ];
+                let dx = segment_tangent(&x, n);
                 let ds = (dx[0] * dx[0] + dx[1] * dx[1]).sqrt();
                 for (k, &node) in seg.iter().enumerate() {
                     for c in 0..2 {
@@ -262,13 +250,7 @@ impl LoadVectors {
         dofs: &DofMap,
         t: &NormalTraction,
     ) -> Result<(), LoadError> {
-        let segments = mesh
-            .edges
-            .get(&t.edge)
-            .ok_or_else(|| LoadError::UnknownEdge {
-                edge: t.edge.clone(),
-                available: names(&mesh.edges),
-            })?;
+        let segments = edge_segments(mesh, &t.edge)?;
         let sides = element_sides(mesh);
         let rule = quadratic_line_rule();
         let target = self.target(t.proportional);
@@ -285,12 +267,7 @@ impl LoadVectors {
                 (x[2][c] - middle).abs() <= 1e-12 * chord[0].abs().max(chord[1].abs())
             });
             for (n, w) in &rule {
-                let s = n[1] - n[0];
-                let dn = [s - 0.5, s + 0.5, -2.0 * s];
-                let dx = [
-                    dn[0] * x[0][0] + dn[1] * x[1][0] + dn[2] * x[2][0],
-                    dn[0] * x[0][1] + dn[1] * x[1][1] + dn[2] * x[2][1],
-                ];
+                let dx = segment_tangent(&x, n);
                 let ds = (dx[0] * dx[0] + dx[1] * dx[1]).sqrt();
                 let along = if straight { chord } else { dx };
                 let length = (along[0] * along[0] + along[1] * along[1]).sqrt();
@@ -463,4 +440,27 @@ mod tests {
         let body: f64 = loads.fixed.iter().sum();
         assert!((body - 2.0 * 6.0).abs() < 1e-12);
     }
+}
+
+/// The segments of the named edge, or [`LoadError::UnknownEdge`] listing the edges there are.
+fn edge_segments<'m>(mesh: &'m Mesh, edge: &str) -> Result<&'m [[usize; 3]], LoadError> {
+    mesh.edges
+        .get(edge)
+        .map(Vec::as_slice)
+        .ok_or_else(|| LoadError::UnknownEdge {
+            edge: edge.to_string(),
+            available: names(&mesh.edges),
+        })
+}
+
+/// $`dX/ds`$ of the quadratic segment through `x` (end, end, middle) at the quadrature point
+/// whose shape-function values are `n`: $`s = N_1 - N_0`$ is recovered from the end-node
+/// functions and $`dN/ds = (s - \tfrac12,\ s + \tfrac12,\ -2s)`$.
+fn segment_tangent(x: &[[f64; 2]], n: &[f64; 3]) -> [f64; 2] {
+    let s = n[1] - n[0];
+    let dn = [s - 0.5, s + 0.5, -2.0 * s];
+    [
+        dn[0] * x[0][0] + dn[1] * x[1][0] + dn[2] * x[2][0],
+        dn[0] * x[0][1] + dn[1] * x[1][1] + dn[2] * x[2][1],
+    ]
 }
