@@ -26,7 +26,7 @@ wrinkle_macros::energy_model! {
     model BeamComplexEnvelope as "beam-complex-envelope" {
         fields: u0 [displacement_x], a [envelope_real], b [envelope_imaginary];
         parameters: bending_stiffness "bending stiffness EI (N mm^2)", axial_stiffness "axial stiffness ES (N)",
-            foundation "foundation stiffness c (N/mm^2)", foundation_cubic "cubic foundation stiffness c3 (N/mm^4)",
+            foundation [varying] "foundation stiffness c (N/mm^2), a function of X allowed", foundation_cubic "cubic foundation stiffness c3 (N/mm^4)",
             wavenumber "wavenumber Q (1/mm)";
         let q = wavenumber;
         let modulus2 = a^2 + b^2;

@@ -19,7 +19,7 @@ wrinkle_macros::energy_model! {
     model BeamEnvelope as "beam-envelope" {
         fields: u0 [displacement_x], v1 [envelope];
         parameters: bending_stiffness "bending stiffness EI (N mm^2)", axial_stiffness "axial stiffness ES (N)",
-            foundation "foundation stiffness c (N/mm^2)", foundation_cubic "cubic foundation stiffness c3 (N/mm^4)",
+            foundation [varying] "foundation stiffness c (N/mm^2), a function of X allowed", foundation_cubic "cubic foundation stiffness c3 (N/mm^4)",
             wavenumber "wavenumber Q (1/mm)";
         let q2 = wavenumber^2;
         let strain = u0.x + v1.x^2 + q2 * v1^2;

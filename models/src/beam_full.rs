@@ -26,7 +26,7 @@ wrinkle_macros::energy_model! {
     model BeamFull as "beam-full" {
         fields: u [displacement_x], v [deflection];
         parameters: bending_stiffness "bending stiffness EI (N mm^2)", axial_stiffness "axial stiffness ES (N)",
-            foundation "foundation stiffness c (N/mm^2)", foundation_cubic "cubic foundation stiffness c3 (N/mm^4)";
+            foundation [varying] "foundation stiffness c (N/mm^2), a function of X allowed", foundation_cubic "cubic foundation stiffness c3 (N/mm^4)";
         let strain = u.x + 0.5 * v.x^2;
         energy membrane = 0.5 * axial_stiffness * strain^2;
         energy bending [reduced] = 0.5 * bending_stiffness * v.xx^2;

@@ -78,6 +78,11 @@ pub struct ModelSpec {
     pub field_roles: &'static [FieldRole],
     /// Runtime parameters, in the order [`EnergyModel::from_parameters`] takes them.
     pub parameters: &'static [&'static str],
+    /// The parameters declared `[varying]`: those the runtime may make functions of the
+    /// position, evaluated at each quadrature point
+    /// ([`ParameterProfile`](crate::fem::ParameterProfile)); the model's density then reads
+    /// the local value (a foundation $`c(X)`$ that varies slowly along a beam).
+    pub varying_parameters: &'static [&'static str],
     /// The model-level jet: every (field, derivative) that some term uses, sorted by field then
     /// derivative. The runtime evaluates nothing else.
     pub jet: &'static [JetEntry],
@@ -95,6 +100,10 @@ impl ModelSpec {
     /// Index of a parameter by name.
     pub fn parameter_index(&self, name: &str) -> Option<usize> {
         self.parameters.iter().position(|p| *p == name)
+    }
+    /// Whether the parameter `name` is declared `[varying]` (may be a function of position).
+    pub fn parameter_may_vary(&self, name: &str) -> bool {
+        self.varying_parameters.contains(&name)
     }
     /// Index of a field by name.
     pub fn field_index(&self, name: &str) -> Option<usize> {

@@ -20,7 +20,8 @@
 //! motion (the constant $`g_0`$ only in the order-0 state).
 
 use crate::fem::{
-    Assembler, DirichletCondition, DofMap, ElementKind, LoadVectors, Loads, Mesh, TaylorTape,
+    Assembler, DirichletCondition, DofMap, ElementKind, LoadVectors, Loads, Mesh, ParameterProfile,
+    TaylorTape,
 };
 use crate::linear::pattern::SparseMatrix;
 /// Euclidean norm (re-exported from [`crate::linear::vector`], where the vector kernels live).
@@ -73,6 +74,18 @@ pub enum ProblemError {
         /// The limit ([`crate::model::MAX_JET`]).
         max: usize,
     },
+    /// A profile given to a parameter the model does not have, or did not declare `[varying]`.
+    #[error(
+        "model `{model}`: parameter `{parameter}` cannot vary over the domain (parameters declared `[varying]`: {varying})"
+    )]
+    ParameterNotVarying {
+        /// Model name.
+        model: &'static str,
+        /// The parameter given a profile.
+        parameter: String,
+        /// The model's varying parameters, comma-separated (`none` when it has none).
+        varying: String,
+    },
     /// The model has more fields than the assembler's element buffers hold.
     #[error("model `{model}` has {count} fields; at most {max} are supported")]
     TooManyFields {
@@ -122,6 +135,38 @@ impl<M: EnergyModel> Problem<M> {
             loads,
             load_rate_norm: std::sync::OnceLock::new(),
         })
+    }
+
+    /// Makes the named parameters functions of position: each `(name, profile)` replaces that
+    /// parameter at every quadrature point by the profile's value there
+    /// ([`Assembler::set_parameter_profiles`]). Every name must be a parameter the model
+    /// declares `[varying]` ([`crate::model::ModelSpec::varying_parameters`]); otherwise
+    /// nothing changes.
+    pub fn set_parameter_profiles(
+        &mut self,
+        profiles: Vec<(String, ParameterProfile)>,
+    ) -> Result<(), ProblemError> {
+        let spec = M::SPEC;
+        let mut indexed = Vec::with_capacity(profiles.len());
+        for (name, profile) in profiles {
+            match spec.parameter_index(&name) {
+                Some(index) if spec.parameter_may_vary(&name) => indexed.push((index, profile)),
+                _ => {
+                    let varying = if spec.varying_parameters.is_empty() {
+                        "none".to_string()
+                    } else {
+                        spec.varying_parameters.join(", ")
+                    };
+                    return Err(ProblemError::ParameterNotVarying {
+                        model: spec.name,
+                        parameter: name,
+                        varying,
+                    });
+                }
+            }
+        }
+        self.assembler.set_parameter_profiles(indexed);
+        Ok(())
     }
 
     /// The dof map.

@@ -36,6 +36,7 @@ static SPEC: ModelSpec = ModelSpec {
     fields: &["u"],
     field_roles: &[FieldRole::DisplacementX],
     parameters: &["k", "b", "c"],
+    varying_parameters: &[],
     jet: &[JetEntry {
         field: 0,
         derivative: Derivative::X,

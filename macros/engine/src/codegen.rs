@@ -149,6 +149,11 @@ fn model_spec(
         quote!(::wrinkle_runtime::FieldRole::#variant)
     });
     let parameter_names = model_type.parameters.iter().map(ToString::to_string);
+    let varying_names = model
+        .parameters
+        .iter()
+        .filter(|p| p.varying)
+        .map(|p| p.name.to_string());
     let jet_entries = model.jet.iter().map(|entry| {
         let field = entry.field;
         let derivative = format_ident!("{}", entry.derivative.variant_name());
@@ -174,6 +179,7 @@ fn model_spec(
             fields: &[#(#field_names),*],
             field_roles: &[#(#field_roles),*],
             parameters: &[#(#parameter_names),*],
+            varying_parameters: &[#(#varying_names),*],
             jet: &[#(#jet_entries),*],
             terms: &[#(#term_specs),*],
             simplification_report: #report,
@@ -310,6 +316,7 @@ pub fn generate_stub(outline: &ModelOutline) -> TokenStream {
                 fields: &[],
                 field_roles: &[],
                 parameters: &[#(#parameter_names),*],
+                varying_parameters: &[],
                 jet: &[],
                 terms: &[],
                 simplification_report: "",

@@ -20,6 +20,8 @@ pub struct Parameter {
     pub name: Ident,
     /// Its documentation, empty when none was given.
     pub documentation: String,
+    /// Declared `[varying]`: the runtime may make it a function of position.
+    pub varying: bool,
 }
 
 /// One energy term after lowering.
@@ -350,6 +352,7 @@ pub fn lower_model(declaration: &ModelDeclaration) -> Result<LoweredModel, syn::
         declare(&mut scope, &field.name, Binding::Field(index), &mut errors);
     }
     let field_roles = validate_roles(declaration, &mut errors);
+    validate_parameter_attributes(declaration, &mut errors);
     for (index, parameter) in declaration.parameters.iter().enumerate() {
         let binding = Binding::Parameter(index);
         declare(&mut scope, &parameter.name, binding, &mut errors);
@@ -389,6 +392,7 @@ pub fn lower_model(declaration: &ModelDeclaration) -> Result<LoweredModel, syn::
                     .as_ref()
                     .map(|text| text.value())
                     .unwrap_or_default(),
+                varying: parameter.attribute.is_some(),
             })
             .collect(),
         jet,
@@ -518,6 +522,25 @@ fn validate_roles(declaration: &ModelDeclaration, errors: &mut Vec<syn::Error>) 
     }
     roles
 }
+
+/// The one parameter attribute is `varying`: anything else is an error at the attribute.
+fn validate_parameter_attributes(declaration: &ModelDeclaration, errors: &mut Vec<syn::Error>) {
+    for parameter in &declaration.parameters {
+        if let Some(attribute) = &parameter.attribute
+            && attribute != VARYING
+        {
+            errors.push(syn::Error::new(
+                attribute.span(),
+                format!(
+                    "unknown parameter attribute `{attribute}`: the only one is `{VARYING}` (a parameter the runtime may make a function of position)"
+                ),
+            ));
+        }
+    }
+}
+
+/// The parameter attribute of a function of position.
+pub const VARYING: &str = "varying";
 
 fn declare_in(lowering: &mut Lowering, name: &Ident, binding: Binding) -> bool {
     declare(&mut lowering.scope, name, binding, &mut lowering.errors)

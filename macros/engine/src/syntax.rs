@@ -209,11 +209,13 @@ pub struct FieldDeclaration {
     pub role: Option<Ident>,
 }
 
-/// `young "Young's modulus E (MPa)"`.
+/// `young "Young's modulus E (MPa)"`, or `foundation [varying] "…"`.
 #[derive(Clone, Debug)]
 pub struct ParameterDeclaration {
     /// Parameter name.
     pub name: Ident,
+    /// The attribute as written (`varying`), validated during lowering.
+    pub attribute: Option<Ident>,
     /// Optional documentation (units).
     pub documentation: Option<LitStr>,
 }
@@ -492,7 +494,7 @@ impl PartialModel {
         Ok(())
     }
 
-    /// `parameters: young "Young's modulus", poisson;` (optional).
+    /// `parameters: young "Young's modulus", poisson, c [varying];` (optional).
     fn parse_parameters(&mut self, content: ParseStream) -> syn::Result<()> {
         if !content.peek(keyword::parameters) {
             return Ok(());
@@ -501,6 +503,19 @@ impl PartialModel {
         content.parse::<Token![:]>()?;
         while !content.peek(Token![;]) {
             let name: Ident = content.parse()?;
+            let attribute = if content.peek(syn::token::Bracket) {
+                let inner;
+                bracketed!(inner in content);
+                let attribute: Ident = inner.parse()?;
+                if !inner.is_empty() {
+                    return Err(inner.error(
+                        "expected a single parameter attribute, e.g. `foundation [varying]`",
+                    ));
+                }
+                Some(attribute)
+            } else {
+                None
+            };
             let documentation = if content.peek(LitStr) {
                 Some(content.parse::<LitStr>()?)
             } else {
@@ -508,6 +523,7 @@ impl PartialModel {
             };
             self.parameters.push(ParameterDeclaration {
                 name,
+                attribute,
                 documentation,
             });
             if !content.peek(Token![,]) {

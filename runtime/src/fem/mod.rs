@@ -8,6 +8,7 @@ pub mod element;
 pub mod gmsh;
 pub mod loads;
 pub mod mesh;
+pub mod parameter_profile;
 
 pub use assembly::{Assembler, Parallelism, TaylorTape};
 pub use dofs::{DirichletCondition, DofMap, NodalComponent};
@@ -16,3 +17,4 @@ pub use element::{
 };
 pub use loads::{BodyLoad, EdgeTraction, LoadError, LoadVectors, Loads, NormalTraction, PointLoad};
 pub use mesh::{Mesh, MeshError, StructuredGrid};
+pub use parameter_profile::{ParameterProfile, ProfileAxis, ProfileError};

@@ -674,6 +674,7 @@ mod tests {
         fields: &["g", "f"],
         field_roles: &[FieldRole::Other, FieldRole::Other],
         parameters: &["k", "s"],
+        varying_parameters: &[],
         jet: &[
             JetEntry {
                 field: 0,

@@ -48,7 +48,7 @@ use std::fmt::Write;
 
 use crate::semantic::combine;
 use crate::syntax::{
-    AverageDeclaration, Item, ModelDeclaration, ParameterDeclaration, TermDeclaration,
+    AverageDeclaration, Expression, Item, ModelDeclaration, ParameterDeclaration, TermDeclaration,
 };
 use coefficient::{Atom, ParameterPolynomial};
 use emit::{Emitter, Names};
@@ -101,6 +101,7 @@ pub fn derive(declaration: &ModelDeclaration) -> Result<Option<Derived>, syn::Er
     let parameter_names: Vec<String> = parameters.iter().map(|p| p.name.to_string()).collect();
     let ansatz = Ansatz::new(ansatz_declaration, &microscopic, declaration, &mut errors);
     let wave = wave(&ansatz, &parameter_names, &mut errors);
+    check_constant_carrier(ansatz_declaration, &parameters, &mut errors);
     if !errors.is_empty() {
         return Err(combine(errors).expect("errors"));
     }
@@ -217,6 +218,58 @@ fn derived_parameters(
         }
     }
     parameters
+}
+
+/// A parameter declared `[varying]` in the ansatz's `wavenumber:` or `direction:` is an error
+/// at its name: the derivation averages over periods of a carrier $`e^{iQ\mathbf e\cdot\mathbf X}`$
+/// with constant $`Q`$ and $`\mathbf e`$, so the derivatives of a varying one would be lost.
+fn check_constant_carrier(
+    ansatz: &crate::syntax::AnsatzDeclaration,
+    parameters: &[ParameterDeclaration],
+    errors: &mut Vec<syn::Error>,
+) {
+    let settings = [
+        ("wavenumber", &ansatz.wavenumber),
+        ("direction", &ansatz.direction),
+    ];
+    for (setting, expression) in settings {
+        let Some(expression) = expression else {
+            continue;
+        };
+        let mut names = Vec::new();
+        names_in(expression, &mut names);
+        for name in names {
+            if parameters
+                .iter()
+                .any(|p| p.name == *name && p.attribute.is_some())
+            {
+                errors.push(syn::Error::new(
+                    name.span(),
+                    format!(
+                        "the ansatz's `{setting}` must be constant, and `{name}` is declared `[varying]`: the derivation averages over periods of a fixed carrier"
+                    ),
+                ));
+            }
+        }
+    }
+}
+
+/// Every name an expression reads (derivatives included), in writing order.
+fn names_in<'a>(expression: &'a Expression, names: &mut Vec<&'a syn::Ident>) {
+    match expression {
+        Expression::Number { .. } => {}
+        Expression::Name(name) | Expression::Derivative { base: name, .. } => names.push(name),
+        Expression::Negate { operand: inner, .. }
+        | Expression::Power { base: inner, .. }
+        | Expression::Call {
+            argument: inner, ..
+        }
+        | Expression::Parenthesized { inner, .. } => names_in(inner, names),
+        Expression::Binary { lhs, rhs, .. } => {
+            names_in(lhs, names);
+            names_in(rhs, names);
+        }
+    }
 }
 
 /// $`Q`$ and $`\mathbf e = (\cos\theta, \sin\theta)`$ of the ansatz; along X ($`\mathbf e =

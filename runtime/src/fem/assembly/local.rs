@@ -93,7 +93,8 @@ impl<M: EnergyModel> Assembler<M> {
             let m = term.jet.len();
             for q in 0..values.weights.len() {
                 Self::jet_at(term, values, q, &local, &mut jet[..m]);
-                sum = sum + self.model.energy(t, &jet[..m]) * values.weights[q];
+                let model = self.model_at(term.value_set, e, q);
+                sum = sum + model.energy(t, &jet[..m]) * values.weights[q];
             }
         }
         sum
@@ -115,7 +116,8 @@ impl<M: EnergyModel> Assembler<M> {
             let m = term.jet.len();
             for q in 0..values.weights.len() {
                 Self::jet_at(term, values, q, &local, &mut jet[..m]);
-                self.model.residual(t, &jet[..m], &mut residual[..m]);
+                let model = self.model_at(term.value_set, e, q);
+                model.residual(t, &jet[..m], &mut residual[..m]);
                 let w = values.weights[q];
                 let basis = values.point_basis::<B>(q);
                 for (&r, &(field, row)) in residual[..m].iter().zip(&term.rows) {
@@ -152,7 +154,8 @@ impl<M: EnergyModel> Assembler<M> {
             let hessian = &mut hessian[..pattern.len()];
             for q in 0..values.weights.len() {
                 Self::jet_at(term, values, q, &local, &mut jet[..m]);
-                self.model.tangent(t, &jet[..m], hessian);
+                self.model_at(term.value_set, e, q)
+                    .tangent(t, &jet[..m], hessian);
                 let w = values.weights[q];
                 let basis = values.point_basis::<B>(q);
                 for (p, &(i, j)) in pattern.iter().enumerate() {
@@ -234,7 +237,8 @@ impl<M: EnergyModel> Assembler<M> {
             let m = term.jet.len();
             for q in 0..values.weights.len() {
                 Self::jet_at(term, values, q, &local, &mut jet[..m]);
-                self.model.residual(t, &jet[..m], &mut residual[..m]);
+                let model = self.model_at(term.value_set, e, q);
+                model.residual(t, &jet[..m], &mut residual[..m]);
                 for (sum, position) in sums.iter_mut().zip(positions) {
                     if let Some(i) = position {
                         *sum += residual[*i] * values.weights[q] / area;

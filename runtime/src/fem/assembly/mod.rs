@@ -36,6 +36,7 @@ pub use taylor::TaylorTape;
 use super::dofs::DofMap;
 use super::element::{Element, ElementValues, JacobianError, with_element};
 use super::mesh::Mesh;
+use super::parameter_profile::ParameterProfile;
 use crate::linear::pattern::{SparseMatrix, SparsityPattern};
 use crate::model::{EnergyModel, JetEntry, QuadratureRule};
 /// The stack buffers' sizes, owned by the kernel contract (re-exported for older paths).
@@ -92,6 +93,12 @@ pub struct Assembler<M: EnergyModel> {
     /// Element colours: no two elements of one colour share a node.
     colours: Vec<Vec<usize>>,
     parallelism: Parallelism,
+    /// Parameters that vary over the domain: (parameter index, profile); empty when every
+    /// parameter is constant.
+    profiles: Vec<(usize, ParameterProfile)>,
+    /// With profiles, the model at every quadrature point of each value set (points per
+    /// element, instances `[e * points + q]`); empty otherwise.
+    point_models: Vec<(usize, Vec<M>)>,
 }
 
 /// The values of every element of `mesh` at the points of the element's rule `rule`.
@@ -171,6 +178,8 @@ impl<M: EnergyModel> Assembler<M> {
             element_slots,
             colours,
             parallelism: Parallelism::available(),
+            profiles: Vec::new(),
+            point_models: Vec::new(),
         })
     }
 
@@ -178,9 +187,62 @@ impl<M: EnergyModel> Assembler<M> {
     pub fn model(&self) -> &M {
         &self.model
     }
-    /// Replaces the model parameters (same model type, so pattern and element values stay).
+    /// Replaces the model parameters (same model type, so pattern and element values stay);
+    /// profiled parameters keep their profiles.
     pub fn set_model(&mut self, model: M) {
         self.model = model;
+        self.place_point_models();
+    }
+
+    /// Makes parameters vary over the domain: each `(parameter index, profile)` replaces that
+    /// parameter of the model at every quadrature point by the profile's value there
+    /// ([`ParameterProfile::value_at`]). An empty list makes every parameter constant again.
+    /// Whether the model allows a parameter to vary is checked by
+    /// [`crate::problem::Problem::set_parameter_profiles`].
+    pub fn set_parameter_profiles(&mut self, profiles: Vec<(usize, ParameterProfile)>) {
+        self.profiles = profiles;
+        self.place_point_models();
+    }
+
+    /// The parameter profiles in use.
+    pub fn parameter_profiles(&self) -> &[(usize, ParameterProfile)] {
+        &self.profiles
+    }
+
+    /// Rebuilds [`Self::point_models`] from the model and the profiles.
+    fn place_point_models(&mut self) {
+        self.point_models.clear();
+        if self.profiles.is_empty() {
+            return;
+        }
+        let constant = self.model.parameter_values();
+        for (_, values) in &self.value_sets {
+            let points = values.first().map_or(0, ElementValues::point_count);
+            let models = values
+                .iter()
+                .flat_map(|element| &element.points)
+                .map(|&point| {
+                    let mut local = constant.clone();
+                    for (parameter, profile) in &self.profiles {
+                        local[*parameter] = profile.value_at(point);
+                    }
+                    M::from_parameters(&local)
+                })
+                .collect();
+            self.point_models.push((points, models));
+        }
+    }
+
+    /// The model at quadrature point `q` of element `e` in value set `value_set`: the model
+    /// itself unless some parameter has a profile.
+    #[inline(always)]
+    fn model_at(&self, value_set: usize, e: usize, q: usize) -> &M {
+        if self.point_models.is_empty() {
+            &self.model
+        } else {
+            let (points, models) = &self.point_models[value_set];
+            &models[e * points + q]
+        }
     }
     /// The mesh.
     pub fn mesh(&self) -> &Arc<Mesh> {

@@ -99,8 +99,8 @@ impl<M: EnergyModel> Assembler<M> {
     /// Taylor mode, order 0: records the coefficients of order 0 at the global nodal values
     /// `global` ([`EnergyModel::taylor_start`] at every point of every nonlinear term).
     pub fn taylor_start(&self, global: &[f64], tape: &mut TaylorTape) {
-        self.taylor_sweep(global, tape, |t, jet, block, stride| {
-            self.model.taylor_start(t, jet, block, stride)
+        self.taylor_sweep(global, tape, |model, t, jet, block, stride| {
+            model.taylor_start(t, jet, block, stride)
         });
     }
 
@@ -110,18 +110,18 @@ impl<M: EnergyModel> Assembler<M> {
     /// [`DofMap::expand_increment`](crate::fem::DofMap::expand_increment)).
     pub fn taylor_commit(&self, order: usize, increment: &[f64], tape: &mut TaylorTape) {
         assert!(order >= 1 && order < tape.orders, "order outside the tape");
-        self.taylor_sweep(increment, tape, |t, jet, block, stride| {
-            self.model.taylor_commit(t, order, jet, block, stride)
+        self.taylor_sweep(increment, tape, |model, t, jet, block, stride| {
+            model.taylor_commit(t, order, jet, block, stride)
         });
     }
 
-    /// Calls `kernel(term, jet, point's tape, stride)` at every point of every taped term with
-    /// the jet of `global` (see [`TaylorTape`] for the layout).
+    /// Calls `kernel(model at the point, term, jet, point's tape, stride)` at every point of
+    /// every taped term with the jet of `global` (see [`TaylorTape`] for the layout).
     fn taylor_sweep(
         &self,
         global: &[f64],
         tape: &mut TaylorTape,
-        kernel: impl Fn(usize, &[f64], &mut [f64], usize) + Sync + Send,
+        kernel: impl Fn(&M, usize, &[f64], &mut [f64], usize) + Sync + Send,
     ) {
         with_element!(self.mesh.kind, E => {
             self.taylor_sweep_on::<E, { E::FUNCTIONS }>(global, tape, kernel)
@@ -132,7 +132,7 @@ impl<M: EnergyModel> Assembler<M> {
         &self,
         global: &[f64],
         tape: &mut TaylorTape,
-        kernel: impl Fn(usize, &[f64], &mut [f64], usize) + Sync + Send,
+        kernel: impl Fn(&M, usize, &[f64], &mut [f64], usize) + Sync + Send,
     ) {
         let orders = tape.orders;
         let layout = tape.layout.clone();
@@ -148,7 +148,8 @@ impl<M: EnergyModel> Assembler<M> {
                     Self::jet_at(term, values, q, &local, &mut jet[..m]);
                     let start = entry.offset + q * per_point;
                     let point = &mut block[start..start + per_point];
-                    kernel(entry.term, &jet[..m], point, entry.slots);
+                    let model = self.model_at(term.value_set, e, q);
+                    kernel(model, entry.term, &jet[..m], point, entry.slots);
                 }
             }
         });
@@ -263,18 +264,12 @@ impl<M: EnergyModel> Assembler<M> {
             for q in 0..values.weights.len() {
                 let start = entry.offset + q * per_point;
                 let point = &mut block[start..start + per_point];
+                let model = self.model_at(term.value_set, e, q);
                 if let (Some((committed, _)), Some(local)) = (commit, &local) {
                     Self::jet_at(term, values, q, local, &mut jet[..m]);
-                    self.model
-                        .taylor_commit(entry.term, committed, &jet[..m], point, entry.slots);
+                    model.taylor_commit(entry.term, committed, &jet[..m], point, entry.slots);
                 }
-                self.model.taylor_predict(
-                    entry.term,
-                    order,
-                    point,
-                    entry.slots,
-                    &mut residual[..m],
-                );
+                model.taylor_predict(entry.term, order, point, entry.slots, &mut residual[..m]);
                 let w = values.weights[q];
                 let basis = values.point_basis::<B>(q);
                 for (&r, &(field, row)) in residual[..m].iter().zip(&term.rows) {
