@@ -349,6 +349,29 @@ impl LoadVectors {
     }
 }
 
+/// The segments of the named edge, or [`LoadError::UnknownEdge`] listing the edges there are.
+fn edge_segments<'m>(mesh: &'m Mesh, edge: &str) -> Result<&'m [[usize; 3]], LoadError> {
+    mesh.edges
+        .get(edge)
+        .map(Vec::as_slice)
+        .ok_or_else(|| LoadError::UnknownEdge {
+            edge: edge.to_string(),
+            available: names(&mesh.edges),
+        })
+}
+
+/// $`dX/ds`$ of the quadratic segment through `x` (end, end, middle) at the quadrature point
+/// whose shape-function values are `n`: $`s = N_1 - N_0`$ is recovered from the end-node
+/// functions and $`dN/ds = (s - \tfrac12,\ s + \tfrac12,\ -2s)`$.
+fn segment_tangent(x: &[[f64; 2]], n: &[f64; 3]) -> [f64; 2] {
+    let s = n[1] - n[0];
+    let dn = [s - 0.5, s + 0.5, -2.0 * s];
+    [
+        dn[0] * x[0][0] + dn[1] * x[1][0] + dn[2] * x[2][0],
+        dn[0] * x[0][1] + dn[1] * x[1][1] + dn[2] * x[2][1],
+    ]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -440,27 +463,4 @@ mod tests {
         let body: f64 = loads.fixed.iter().sum();
         assert!((body - 2.0 * 6.0).abs() < 1e-12);
     }
-}
-
-/// The segments of the named edge, or [`LoadError::UnknownEdge`] listing the edges there are.
-fn edge_segments<'m>(mesh: &'m Mesh, edge: &str) -> Result<&'m [[usize; 3]], LoadError> {
-    mesh.edges
-        .get(edge)
-        .map(Vec::as_slice)
-        .ok_or_else(|| LoadError::UnknownEdge {
-            edge: edge.to_string(),
-            available: names(&mesh.edges),
-        })
-}
-
-/// $`dX/ds`$ of the quadratic segment through `x` (end, end, middle) at the quadrature point
-/// whose shape-function values are `n`: $`s = N_1 - N_0`$ is recovered from the end-node
-/// functions and $`dN/ds = (s - \tfrac12,\ s + \tfrac12,\ -2s)`$.
-fn segment_tangent(x: &[[f64; 2]], n: &[f64; 3]) -> [f64; 2] {
-    let s = n[1] - n[0];
-    let dn = [s - 0.5, s + 0.5, -2.0 * s];
-    [
-        dn[0] * x[0][0] + dn[1] * x[1][0] + dn[2] * x[2][0],
-        dn[0] * x[0][1] + dn[1] * x[1][1] + dn[2] * x[2][1],
-    ]
 }
