@@ -48,6 +48,13 @@ pub struct BucklingOptions {
     /// A start vector (warm start, e.g. the mode of a nearby problem); a pseudo-random one when
     /// `None` or when it does not fit.
     pub start: Option<Vec<f64>>,
+    /// When set: a wanted residual below $`\sqrt{\mathrm{tolerance}}`$ that has not halved over
+    /// the last this many operator applications, judged at every check (not only at full bases),
+    /// is taken as the rounding floor and accepted. `None`: stagnation is judged over
+    /// restarts only (three of them, about 60 applications at the default basis size). Large
+    /// plate meshes reach their floor ($`10^{-10}`$–$`10^{-9}`$, above the default tolerance)
+    /// in a few tens of applications after a close shift and would otherwise spend 60 more.
+    pub stagnation_applications: Option<usize>,
 }
 
 impl Default for BucklingOptions {
@@ -60,6 +67,7 @@ impl Default for BucklingOptions {
             accept_unconverged: false,
             seed: 0x5eed_0fb0_c1a5,
             start: None,
+            stagnation_applications: None,
         }
     }
 }
@@ -443,6 +451,7 @@ pub fn smallest_positive_buckling(
     let mut basis = start_basis(&mut operator, &mut random, options)?;
     check_factorization(&operator, &basis)?;
     let mut history: Vec<f64> = Vec::new();
+    let mut checks: Vec<(usize, f64)> = Vec::new();
     let mut restarts = 0;
     loop {
         let full = grow_to_next_check(
@@ -459,7 +468,7 @@ pub fn smallest_positive_buckling(
             restarts,
             applications: operator.applications,
         };
-        match verdict(&ritz, &mut history, &progress, options) {
+        match verdict(&ritz, &mut history, &mut checks, &progress, options) {
             Verdict::Expand => continue,
             Verdict::Restart => {}
             Verdict::Solved { wanted, converged } => {
@@ -586,10 +595,12 @@ enum Verdict<'r> {
 }
 
 /// The decision at a check from the Ritz pairs (ascending), the history of the worst wanted
-/// residual at full checks (extended here) and the iteration's progress.
+/// residual at full checks and that at every check with its operator applications (both
+/// extended here), and the iteration's progress.
 fn verdict<'r>(
     ritz: &'r [RitzPair],
     history: &mut Vec<f64>,
+    checks: &mut Vec<(usize, f64)>,
     progress: &Progress,
     options: &BucklingOptions,
 ) -> Verdict<'r> {
@@ -627,6 +638,13 @@ fn verdict<'r>(
     let worst = wanted
         .iter()
         .fold(0.0_f64, |max, pair| max.max(pair.relative_residual));
+    checks.push((progress.applications, worst));
+    if wanted.len() == options.modes && at_floor(checks, options) {
+        return Verdict::Solved {
+            wanted,
+            converged: true,
+        };
+    }
     if growing {
         let all_found = wanted.len() == options.modes;
         return if all_found && worst <= options.tolerance {
@@ -640,6 +658,23 @@ fn verdict<'r>(
     }
     history.push(worst);
     full_check_verdict(wanted, worst, history, progress, options)
+}
+
+/// Whether the last worst residual of `checks` lies below $`\sqrt{\mathrm{tolerance}}`$ and
+/// has not halved since the last check at least [`BucklingOptions::stagnation_applications`]
+/// operator applications earlier (never when that option is `None`).
+fn at_floor(checks: &[(usize, f64)], options: &BucklingOptions) -> bool {
+    let (Some(window), Some(&(applications, worst))) =
+        (options.stagnation_applications, checks.last())
+    else {
+        return false;
+    };
+    let earlier = checks
+        .iter()
+        .rev()
+        .find(|(at, _)| *at + window <= applications);
+    worst <= options.tolerance.sqrt()
+        && earlier.is_some_and(|&(_, residual)| worst > 0.5 * residual)
 }
 
 /// [`verdict`] at a full basis with wanted pairs, `worst` their largest residual (the last
