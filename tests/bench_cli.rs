@@ -6,7 +6,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-const COLUMNS: [&str; 33] = [
+const COLUMNS: [&str; 34] = [
     "model",
     "sweep",
     "method",
@@ -30,6 +30,7 @@ const COLUMNS: [&str; 33] = [
     "time_residual_checks",
     "time_bifurcation",
     "time_recording",
+    "time_step_floor",
     "peak_memory_mb",
     "tape_mb",
     "factor_nonzeros",

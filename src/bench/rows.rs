@@ -66,6 +66,10 @@ pub struct CostSplit {
     pub time_bifurcation: Option<f64>,
     /// Recording accepted points, with the Legendre–Hadamard check of each step end.
     pub time_recording: Option<f64>,
+    /// A step's floor (issue 30): one factorisation plus the $`N - 1`$ series solves with it,
+    /// $`t_\text{fact}/n_\text{fact} + (N-1)\,t_\text{solves}/n_\text{solves}`$ from the
+    /// run's own means (empty for Riks, which has no series).
+    pub time_step_floor: Option<f64>,
     /// Peak resident memory of the run, MB ($`10^6`$ bytes; Linux only).
     pub peak_memory_mb: Option<f64>,
     /// The ANM's Taylor tape, MB (empty for Riks).
