@@ -321,10 +321,21 @@ fn compare(
         .clone()
         .unwrap_or_else(|| PathBuf::from(&scene.output.directory).join("compare"));
     let comparison = crate::compare::compare(scene, &models, model_overrides, &directory, quiet)?;
-    print_stdout(&crate::compare::comparison_table(
+    // The table goes to stdout whatever the outcome; a model that did not reach what was asked
+    // (outside its validity, stopped, failed) ends the command with the comparison's exit code,
+    // every result written.
+    let printed = print_stdout(&crate::compare::comparison_table(
         &comparison,
         crate::threshold::load_unit(scene),
-    ))?;
+    ));
+    let written = format!(
+        "every model's results and the comparison written to {}",
+        directory.display()
+    );
+    if let Some(error) = comparison.error(&written) {
+        return Err(error);
+    }
+    printed?;
     message_line(&format!("comparison in {}", directory.display()));
     Ok(())
 }

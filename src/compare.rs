@@ -37,8 +37,11 @@ pub const AMPLITUDE_LEVELS: [f64; 3] = [0.5, 1.0, 2.0];
 pub struct CompareRow {
     /// Model name.
     pub model: String,
-    /// `reached`, `incomplete`, `invalid`, `failed` or `error`.
+    /// `reached`, `incomplete`, `invalid`, `failed`, `interrupted` (a run's outcome) or
+    /// `error` (the run could not start).
     pub outcome: String,
+    /// The exit code `wrinkle run` would have ended with (its outcome's, or the error's).
+    pub exit_code: i32,
     /// Why it did not reach its target, if it did not.
     pub reason: Option<String>,
     /// The validity checks that failed (`scale_separation`, `ellipticity`, `mode_resolution`,
@@ -87,12 +90,53 @@ impl CompareRow {
     }
 }
 
+/// The exit codes of the rows from the most to the least severe: interrupted (130), a model
+/// that failed or could not start (1), a model used outside its validity (4), a path stopped
+/// before its target (3).
+const EXIT_CODES_BY_SEVERITY: [i32; 4] = [crate::error::EXIT_INTERRUPTED, 1, 4, 3];
+
+impl Comparison {
+    /// The comparison's exit code: the most severe of its rows' ([`EXIT_CODES_BY_SEVERITY`]),
+    /// 0 when every model reached what was asked — a model outside its validity that the scene
+    /// accepts (`validity.accept`) reached it, as in `wrinkle run`.
+    pub fn exit_code(&self) -> i32 {
+        EXIT_CODES_BY_SEVERITY
+            .into_iter()
+            .find(|code| self.rows.iter().any(|row| row.exit_code == *code))
+            .unwrap_or(0)
+    }
+
+    /// The error the command ends with when a model did not reach what was asked, with the
+    /// comparison's exit code ([`Self::exit_code`]): every such model, its outcome and why,
+    /// followed by `detail` (where the results are); `None` when every model reached it.
+    pub fn error(&self, detail: &str) -> Option<Error> {
+        let models: Vec<String> = self
+            .rows
+            .iter()
+            .filter(|row| row.exit_code != 0)
+            .map(|row| match &row.reason {
+                Some(reason) => format!("{} ({}): {reason}", row.model, row.outcome),
+                None => format!("{} ({})", row.model, row.outcome),
+            })
+            .collect();
+        let message = format!("{}; {detail}", models.join("; "));
+        match self.exit_code() {
+            0 => None,
+            1 => Some(Error::Solver(message)),
+            3 => Some(Error::Incomplete(message)),
+            4 => Some(Error::Invalid(message)),
+            _ => Some(Error::Interrupted(message)),
+        }
+    }
+}
+
 /// One model's row from the result of its run.
 fn row_of(model: &str, summary: &RunSummary) -> CompareRow {
     let finite = |value: Option<f64>| value.filter(|v| v.is_finite());
     CompareRow {
         model: model.to_string(),
         outcome: summary.outcome.name().into(),
+        exit_code: summary.outcome.exit_code(),
         reason: summary.outcome.reason().map(str::to_string),
         failed_checks: summary
             .threshold
@@ -267,6 +311,7 @@ pub fn compare(
             Err(error) => rows.push(CompareRow {
                 model: model.clone(),
                 outcome: "error".into(),
+                exit_code: error.exit_code(),
                 reason: Some(error.to_string()),
                 failed_checks: Vec::new(),
                 mesh,
@@ -294,10 +339,11 @@ pub fn compare(
         closed_form_critical_load: closed_form_threshold(scene).map(|(l, _)| l),
         reference: reference.map(|(model, _)| model),
     };
-    write_comparison(scene, &comparison, &responses, directory)?;
-    if let Some(load) = overlay_load {
-        overlay::write_profile_overlay(scene, models, load, directory)?;
-    }
+    let profiles = match overlay_load {
+        Some(load) => overlay::write_profile_overlay(scene, models, load, directory)?,
+        None => false,
+    };
+    write_comparison(scene, &comparison, &responses, profiles, directory)?;
     Ok(comparison)
 }
 
@@ -365,11 +411,13 @@ fn parse_model_overrides(
         .collect()
 }
 
-/// `compare.csv`, `compare.json`, `compare.png|svg`.
+/// `compare.csv`, `compare.json`, `compare.png|svg`, `index.html` (showing
+/// `compare_profiles.png` when `profiles` were written).
 fn write_comparison(
     scene: &Scene,
     comparison: &Comparison,
     responses: &[Response],
+    profiles: bool,
     directory: &Path,
 ) -> Result<(), Error> {
     let mut csv =
@@ -402,6 +450,7 @@ fn write_comparison(
         "amplitude_levels": AMPLITUDE_LEVELS,
         "closed_form_critical_load": comparison.closed_form_critical_load,
         "reference": comparison.reference,
+        "exit_code": comparison.exit_code(),
         "models": comparison.rows,
     });
     write_json(&path, &value).map_err(io_error(&path))?;
@@ -416,14 +465,14 @@ fn write_comparison(
         .map_err(io_error(&stem))?;
     }
     let path = directory.join("index.html");
-    let html = index_page(scene, comparison, plotted);
+    let html = index_page(scene, comparison, plotted, profiles);
     write_bytes_atomically(&path, html.as_bytes()).map_err(io_error(&path))?;
     Ok(())
 }
 
 /// `index.html`: the comparison table with each model's run linked (`MODEL/report.html`), the
-/// overlaid responses, and links to `compare.csv` and `compare.json`.
-fn index_page(scene: &Scene, comparison: &Comparison, plotted: bool) -> String {
+/// overlaid responses and profiles, and links to `compare.csv` and `compare.json`.
+fn index_page(scene: &Scene, comparison: &Comparison, plotted: bool, profiles: bool) -> String {
     use crate::output::report::escape;
     let unit = crate::threshold::load_unit(scene);
     let mut html = format!(
@@ -432,6 +481,7 @@ fn index_page(scene: &Scene, comparison: &Comparison, plotted: bool) -> String {
          body {{ font-family: sans-serif; max-width: 75rem; margin: 2rem auto; padding: 0 1rem; }}\n\
          table {{ border-collapse: collapse; }} td, th {{ padding: 0.3rem 0.7rem; border-bottom: 1px solid #ddd; text-align: right; }}\n\
          td:first-child, th:first-child, td:last-child {{ text-align: left; }}\n\
+         td:not(:last-child) {{ white-space: nowrap; }}\n\
          tr.invalid {{ color: #777; }} img {{ max-width: 100%; }}\n</style>\n</head>\n<body>\n\
          <h1>Models compared on {source}</h1>\n<p>written {date}; the ratio is to {reference}; \
          grey rows failed a validity check and are drawn grey and dashed.</p>\n<table>\n\
@@ -485,6 +535,11 @@ fn index_page(scene: &Scene, comparison: &Comparison, plotted: bool) -> String {
     }
     if plotted {
         html.push_str("<p><img src=\"compare.png\" alt=\"overlaid responses\"></p>\n");
+    }
+    if profiles {
+        html.push_str(
+            "<p><img src=\"compare_profiles.png\" alt=\"the models' wrinkles at one load\"></p>\n",
+        );
     }
     html.push_str(
         "<p><a href=\"compare.csv\">compare.csv</a> · <a href=\"compare.json\">compare.json</a></p>\n</body>\n</html>\n",
@@ -580,6 +635,12 @@ mod tests {
         CompareRow {
             model: model.into(),
             outcome: outcome.into(),
+            exit_code: match outcome {
+                "reached" => 0,
+                "incomplete" => 3,
+                "invalid" => 4,
+                _ => 1,
+            },
             reason: None,
             failed_checks: checks.iter().map(|c| c.to_string()).collect(),
             mesh: None,
@@ -603,5 +664,39 @@ mod tests {
         assert!(!row("x", "error", &[], 0.1).is_valid());
         assert!(row("reference-envelope", "reached", &[], 0.0895).is_valid());
         assert!(row("reference-envelope", "incomplete", &[], 0.0895).is_valid());
+    }
+
+    fn comparison(rows: Vec<CompareRow>) -> Comparison {
+        Comparison {
+            rows,
+            closed_form_critical_load: None,
+            reference: None,
+        }
+    }
+
+    /// The comparison ends as its most severe row: a failure (1) before a model outside its
+    /// validity (4) before a path that stopped early (3); 0 only when every model reached its
+    /// target — an accepted failed check (outcome `reached`) included.
+    #[test]
+    fn the_comparison_exits_with_its_most_severe_row() {
+        let valid = row("reference-envelope", "reached", &[], 0.0895);
+        let accepted = row("pure-membrane", "reached", &["well_posedness"], 0.0444);
+        let ill_posed = row("pure-membrane", "invalid", &["well_posedness"], 0.0444);
+        let stopped = row("complex-envelope", "incomplete", &[], 0.0895);
+        let failed = row("fvk-plate", "error", &[], 0.09);
+        let all_reached = comparison(vec![valid.clone(), accepted]);
+        assert_eq!(all_reached.exit_code(), 0);
+        assert!(all_reached.error("written").is_none());
+        let invalid = comparison(vec![valid.clone(), ill_posed.clone(), stopped.clone()]);
+        assert_eq!(invalid.exit_code(), 4);
+        let error = invalid.error("written to OUT").unwrap();
+        assert_eq!(error.exit_code(), 4);
+        let text = error.to_string();
+        assert!(text.contains("pure-membrane (invalid)"), "{text}");
+        assert!(text.contains("complex-envelope (incomplete)"), "{text}");
+        assert!(!text.contains("reference-envelope"), "{text}");
+        assert!(text.ends_with("written to OUT"), "{text}");
+        assert_eq!(comparison(vec![stopped.clone(), valid]).exit_code(), 3);
+        assert_eq!(comparison(vec![ill_posed, failed, stopped]).exit_code(), 1);
     }
 }

@@ -100,14 +100,14 @@ fn field_data_number(xml: &str, name: &str) -> Option<f64> {
 }
 
 /// Writes `compare_profiles.png/.svg` for the `models` that reached `load` (at least two), or
-/// nothing. The line runs along the wave direction through the largest envelope amplitude of
+/// nothing; says whether it wrote them. The line runs along the wave direction through the largest envelope amplitude of
 /// the first envelope model (the plate's largest $`|w|`$ when there is none).
 pub fn write_profile_overlay(
     scene: &Scene,
     models: &[String],
     load: f64,
     directory: &Path,
-) -> Result<(), Error> {
+) -> Result<bool, Error> {
     let direction = scene.model.direction_degrees.to_radians();
     // Every model ran with the scene's VTU loads and `load` after them: the file names come
     // from that list (`fields_file_at` keeps them distinct).
@@ -123,11 +123,11 @@ pub fn write_profile_overlay(
         .filter_map(|model| read_state(directory, model, load, &requested))
         .collect();
     if states.len() < 2 {
-        return Ok(());
+        return Ok(false);
     }
     let h = scene.material.thickness;
     let Some((peak, along_y)) = line_through_peak(&states, direction) else {
-        return Ok(());
+        return Ok(false);
     };
     let bounds = states[0].mesh.bounds();
     let axis = usize::from(along_y);
@@ -181,7 +181,7 @@ pub fn write_profile_overlay(
     let stem = directory.join("compare_profiles");
     plot_profiles(&stem, "Wrinkles of each model at the same load", &plot)
         .map_err(io_error(&stem))?;
-    Ok(())
+    Ok(true)
 }
 
 /// The point of the largest envelope amplitude of the first envelope model (else the largest
