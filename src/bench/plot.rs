@@ -2,16 +2,25 @@
 //! quantity and one series per sweep and path method (and model), each point tagged with the
 //! setting it varies.
 //!
+//! Both axes are logarithmic with a tenth of a decade of room beyond the data, so that no point
+//! sits on an axis, and ticks at whole decades (and at 2 and 5 times them on an axis shorter
+//! than three decades). Each point's tag is placed beside it without covering another point or
+//! tag ([`tag_placement`]); a tag with no free place is left out, the legend and the line's
+//! order (coarse to fine) still say which point it is.
+//!
 //! Drawn in the house style of [`crate::output::plots`] (the bundled DejaVu Sans font, the
 //! Tableau colours, a supersampled PNG and an SVG, the legend below the panels). Those helpers
 //! are private to that module, so the few needed here are restated; a point with zero error
 //! (the reference itself, or $`\lambda_c`$ at a fixed wavenumber) has no place on a log axis
 //! and is left out.
 
+mod tag_placement;
+
 use super::plan::{Method, Sweep};
 use super::rows::{Bench, BenchRow};
 use crate::output::{write_atomically_via_path, write_bytes_atomically};
 use plotters::coord::Shift;
+use plotters::coord::combinators::WithKeyPoints;
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 use plotters::style::{FontStyle, register_font};
@@ -262,22 +271,76 @@ struct Figure {
     size: (u32, u32),
 }
 
-/// Decade bounds around the positive values (at least one decade).
-fn decades(values: impl Iterator<Item = f64>) -> (f64, f64) {
+/// A logarithmic axis: its bounds, the ticks that carry a label, and the lighter grid lines.
+struct LogAxis {
+    low: f64,
+    high: f64,
+    ticks: Vec<f64>,
+    light: Vec<f64>,
+}
+
+/// Room left beyond the data on a log axis, in decades.
+const AXIS_ROOM_DECADES: f64 = 0.1;
+
+/// The axis around the positive values: [`AXIS_ROOM_DECADES`] of room each side, bounds
+/// rounded outward to half decades, at least one decade long; labelled ticks at $`10^k`$, and
+/// at $`2\cdot 10^k`$ and $`5\cdot 10^k`$ when it is shorter than three decades; light lines at
+/// the other multiples.
+fn log_axis(values: impl Iterator<Item = f64>) -> LogAxis {
     let (low, high) = values
         .filter(|v| v.is_finite() && *v > 0.0)
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
             (l.min(v), h.max(v))
         });
-    if !low.is_finite() {
-        return (1e-3, 1.0);
-    }
-    let (mut low, mut high) = (low.log10().floor(), high.log10().ceil());
-    if high <= low {
+    let (mut low, mut high) = if low.is_finite() {
+        (
+            (2.0 * (low.log10() - AXIS_ROOM_DECADES)).floor() / 2.0,
+            (2.0 * (high.log10() + AXIS_ROOM_DECADES)).ceil() / 2.0,
+        )
+    } else {
+        (-3.0, 0.0)
+    };
+    while high - low < 1.0 {
         low -= 0.5;
         high += 0.5;
     }
-    (10f64.powf(low), 10f64.powf(high))
+    let labelled: &[f64] = if high - low < 3.0 {
+        &[1.0, 2.0, 5.0]
+    } else {
+        &[1.0]
+    };
+    let (mut ticks, mut light) = (Vec::new(), Vec::new());
+    for decade in (low.floor() as i32)..=(high.ceil() as i32) {
+        for multiple in 1..10 {
+            // Written from its decimal text, so that 1e-5 is the literal, not 10^-5 rounded.
+            let value: f64 = format!("{multiple}e{decade}").parse().unwrap_or(f64::NAN);
+            let logarithm = value.log10();
+            if logarithm < low - 1e-9 || logarithm > high + 1e-9 {
+                continue;
+            }
+            if labelled.contains(&(multiple as f64)) {
+                ticks.push(value);
+            } else {
+                light.push(value);
+            }
+        }
+    }
+    LogAxis {
+        low: 10f64.powf(low),
+        high: 10f64.powf(high),
+        ticks,
+        light,
+    }
+}
+
+impl LogAxis {
+    /// The axis as plotters' coordinate, with its own ticks.
+    fn coordinate(&self) -> WithKeyPoints<LogCoord<f64>> {
+        (self.low..self.high)
+            .log_scale()
+            .with_key_points(self.ticks.clone())
+            .with_light_points(self.light.clone())
+    }
 }
 
 /// Tick text of the time axis: plain decimals between 0.01 and 10⁴, else `1e-5` style.
@@ -290,7 +353,7 @@ fn time_tick(value: f64) -> String {
     }
 }
 
-/// Tick text of the error axis: `1e-5` style, `1` for one.
+/// Tick text of the error axis: `1e-5` style, `1` for one, `2e-5` for a multiple.
 fn error_tick(value: f64) -> String {
     if (value - 1.0).abs() < 1e-12 {
         "1".to_string()
@@ -315,14 +378,14 @@ impl Figure {
         ))?;
         let (_, below) = root.split_vertically(px(TITLE_BAND));
         let (row, legend_area) = below.split_vertically(px(PANEL_HEIGHT as f64));
-        let x_range = decades(
+        let time_axis = log_axis(
             self.panels
                 .iter()
                 .flat_map(|p| &p.series)
                 .flat_map(|s| s.points.iter().map(|p| p.0)),
         );
         for (panel, area) in self.panels.iter().zip(row.split_evenly((1, 3)).iter()) {
-            self.draw_panel(area, panel, x_range, scale)?;
+            self.draw_panel(area, panel, &time_axis, scale)?;
         }
         for (index, (label, color, dashed)) in self.legend.iter().enumerate() {
             let column = (index % 4) as f64;
@@ -350,12 +413,12 @@ impl Figure {
         &self,
         area: &DrawingArea<DB, Shift>,
         panel: &Panel,
-        x_range: (f64, f64),
+        time_axis: &LogAxis,
         scale: f64,
     ) -> Draw<(), DB> {
         let px = |length: f64| (length * scale).round() as i32;
         let font = |size: f64| (FONT, size * scale).into_font();
-        let y_range = decades(
+        let error_axis = log_axis(
             panel
                 .series
                 .iter()
@@ -366,10 +429,7 @@ impl Figure {
             .margin(px(14.0))
             .x_label_area_size(px(56.0))
             .y_label_area_size(px(80.0))
-            .build_cartesian_2d(
-                (x_range.0..x_range.1).log_scale(),
-                (y_range.0..y_range.1).log_scale(),
-            )?;
+            .build_cartesian_2d(time_axis.coordinate(), error_axis.coordinate())?;
         chart
             .configure_mesh()
             .x_desc("total run time (s)")
@@ -379,14 +439,13 @@ impl Figure {
             .bold_line_style(RGBColor(222, 222, 222).stroke_width(scale.round() as u32))
             .light_line_style(RGBColor(244, 244, 244).stroke_width(scale.round() as u32))
             .axis_style(RGBColor(60, 60, 60).stroke_width(scale.round() as u32))
-            .x_labels(6)
-            .y_labels(8)
             .x_label_formatter(&|v| time_tick(*v))
             .y_label_formatter(&|v| error_tick(*v))
             .draw()?;
         for series in &panel.series {
             draw_series(&mut chart, series, scale)?;
         }
+        draw_tags(&chart, panel, scale)?;
         if panel.series.iter().all(|s| s.points.is_empty()) {
             let (width, height) = area.dim_in_pixel();
             area.draw(&Text::new(
@@ -400,21 +459,20 @@ impl Figure {
 }
 
 /// The log–log chart of a panel.
-type LogChart<'a, DB> = ChartContext<'a, DB, Cartesian2d<LogCoord<f64>, LogCoord<f64>>>;
+type LogChart<'a, DB> =
+    ChartContext<'a, DB, Cartesian2d<WithKeyPoints<LogCoord<f64>>, WithKeyPoints<LogCoord<f64>>>>;
 
 /// One series on `chart`: its line in the order of the sweep (coarse to fine, low to high
-/// order, loose to tight, so the line shows what each step of the setting buys and costs), its
-/// points and their tags, or a dashed line without either.
+/// order, loose to tight, so the line shows what each step of the setting buys and costs) and
+/// its points, or a dashed line without points.
 fn draw_series<DB: DrawingBackend>(
     chart: &mut LogChart<'_, DB>,
     series: &Series,
     scale: f64,
 ) -> Draw<(), DB> {
     let px = |length: f64| (length * scale).round() as i32;
-    let font = |size: f64| (FONT, size * scale).into_font();
-    let points = &series.points;
     let style = series.color.stroke_width((2.5 * scale).round() as u32);
-    let line: Vec<(f64, f64)> = points.iter().map(|p| (p.0, p.1)).collect();
+    let line: Vec<(f64, f64)> = series.points.iter().map(|p| (p.0, p.1)).collect();
     if series.dashed {
         chart.draw_series(DashedLineSeries::new(line, px(12.0), px(7.0), style))?;
     } else {
@@ -425,23 +483,74 @@ fn draw_series<DB: DrawingBackend>(
                 .map(|pair| PathElement::new(vec![pair[0], pair[1]], style)),
         )?;
         chart.draw_series(
-            points
+            series
+                .points
                 .iter()
                 .map(|p| Circle::new((p.0, p.1), px(4.5), series.color.filled())),
         )?;
     }
-    let tags = points.iter().filter(|_| !series.dashed);
-    chart.draw_series(tags.map(|p| {
-        Text::new(
-            p.2.clone(),
-            (p.0, p.1),
-            font(14.0)
-                .color(&series.color)
-                .pos(plotters::style::text_anchor::Pos::new(
-                    plotters::style::text_anchor::HPos::Left,
-                    plotters::style::text_anchor::VPos::Bottom,
-                )),
-        )
-    }))?;
+    Ok(())
+}
+
+/// The tags of the panel's points (not of a dashed series), each where
+/// [`tag_placement::place_tags`] finds room, in the colour of its series.
+fn draw_tags<DB: DrawingBackend>(
+    chart: &LogChart<'_, DB>,
+    panel: &Panel,
+    scale: f64,
+) -> Draw<(), DB> {
+    let font = (FONT, 14.0 * scale).into_font();
+    let plot = chart.plotting_area().strip_coord_spec();
+    let base = plot.get_base_pixel();
+    let pixel = |p: &(f64, f64, String)| {
+        let (x, y) = chart.backend_coord(&(p.0, p.1));
+        ((x - base.0) as f64, (y - base.1) as f64)
+    };
+    let (width, height) = plot.dim_in_pixel();
+    let markers: Vec<(f64, f64)> = panel
+        .series
+        .iter()
+        .filter(|s| !s.dashed)
+        .flat_map(|s| s.points.iter().map(pixel))
+        .collect();
+    let segments: Vec<tag_placement::Segment> = panel
+        .series
+        .iter()
+        .flat_map(|s| {
+            s.points
+                .windows(2)
+                .map(|pair| (pixel(&pair[0]), pixel(&pair[1])))
+        })
+        .collect();
+    let mut tags = Vec::new();
+    let mut texts = Vec::new();
+    for series in panel.series.iter().filter(|s| !s.dashed) {
+        for point in &series.points {
+            let (w, h) = plot.estimate_text_size(&point.2, &font.clone().color(&BLACK))?;
+            tags.push((pixel(point), (w as f64, h as f64)));
+            texts.push((point.2.clone(), series.color));
+        }
+    }
+    let scene = tag_placement::Scene {
+        bounds: tag_placement::Rectangle {
+            left: 0.0,
+            top: 0.0,
+            right: width as f64,
+            bottom: height as f64,
+        },
+        markers: &markers,
+        marker_radius: 7.0 * scale,
+        segments: &segments,
+    };
+    let corners = tag_placement::place_tags(&scene, &tags);
+    for ((text, color), corner) in texts.into_iter().zip(corners) {
+        if let Some((left, top)) = corner {
+            plot.draw(&Text::new(
+                text,
+                (left.round() as i32, top.round() as i32),
+                font.clone().color(&color),
+            ))?;
+        }
+    }
     Ok(())
 }
