@@ -10,13 +10,17 @@
 //!   (`wavenumber search: evaluation 7, Q = 0.2354/mm, λ_c = 0.08952 N/mm`).
 //!
 //! Where the reports go ([`ProgressSink`]): an [`indicatif`] bar or spinner when standard error is
-//! a terminal (the label and the text on one line, the bar below it, so that nothing is cut at 80
-//! columns); plain lines when it is not (logs, pipes, CI), at most one every
+//! a terminal; plain lines when it is not (logs, pipes, CI), at most one every
 //! [`DEFAULT_LINE_INTERVAL`] plus one at the start and one at the end; nothing when `quiet`.
+//!
+//! On a terminal every line fits its width (80 columns when it cannot be read): the bar's text is
+//! split into parts — `λ/λ_c = 1.019`, `max |w| / h = 0.2716 of 1.000` on the label's line;
+//! `step 7`, `λ = 9.3e-2` after the bar; the search's evaluation on the line below its spinner —
+//! and a part that does not fit is left out whole ([`fit_parts`]), never cut in the middle.
 //! Write errors (a closed pipe) are ignored: progress never stops a computation.
 
 use super::quantity::{Quantity, format_significant};
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressState, ProgressStyle};
 use std::io::{IsTerminal, Write};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
@@ -35,6 +39,59 @@ pub const DEFAULT_LINE_INTERVAL: Duration = Duration::from_secs(2);
 
 /// Resolution of the bar (positions per full bar); an implementation detail, never shown.
 const BAR_RESOLUTION: u64 = 10_000;
+
+/// Width of a terminal whose width cannot be read.
+const DEFAULT_COLUMNS: usize = 80;
+
+/// Columns of the bar's line besides the detail: two spaces, the bar of 36 between brackets,
+/// ` 100 % `, the elapsed time between brackets (up to `59m 59s`) and a space.
+const BAR_LINE_COLUMNS: usize = 2 + 38 + 7 + 9 + 1;
+
+/// Columns of standard error when it is a terminal ([`DEFAULT_COLUMNS`] when that cannot be
+/// read): what indicatif cuts its lines to.
+fn terminal_columns() -> usize {
+    // SAFETY: TIOCGWINSZ fills the `winsize` passed by pointer and nothing else; on failure
+    // (not a terminal) the zeroed value is left and ignored.
+    let mut size: libc::winsize = unsafe { std::mem::zeroed() };
+    let read = unsafe { libc::ioctl(libc::STDERR_FILENO, libc::TIOCGWINSZ, &mut size) } == 0;
+    if read && size.ws_col > 0 {
+        size.ws_col as usize
+    } else {
+        DEFAULT_COLUMNS
+    }
+}
+
+/// The `parts` that fit in `width` columns (characters), in order, joined by `, `: a part that
+/// does not fit is left out whole and the next ones are still tried; when not even the first
+/// fits, it is cut with `…`.
+pub fn fit_parts(parts: &[String], width: usize) -> String {
+    let mut text = String::new();
+    let mut used = 0;
+    for part in parts.iter().filter(|p| !p.is_empty()) {
+        let length = part.chars().count();
+        let needed = if text.is_empty() { length } else { length + 2 };
+        if used + needed <= width {
+            if !text.is_empty() {
+                text.push_str(", ");
+            }
+            text.push_str(part);
+            used += needed;
+        }
+    }
+    if text.is_empty()
+        && let Some(first) = parts.iter().find(|p| !p.is_empty())
+        && width > 0
+    {
+        text = first.chars().take(width - 1).collect();
+        text.push('…');
+    }
+    text
+}
+
+/// The parts of a detail text such as `step 7, λ = 9.3e-2`.
+fn detail_parts(detail: &str) -> Vec<String> {
+    detail.split(", ").map(str::to_string).collect()
+}
 
 /// Where progress reports go.
 #[derive(Clone)]
@@ -140,6 +197,22 @@ impl ProgressTarget {
         }
     }
 
+    /// `"max |w| / h = 0.532 of 2.00"`, with the unit when there is one: the value and the
+    /// target, without the fraction (the bar shows it).
+    pub fn describe_briefly(&self, value: f64) -> String {
+        let unit = if self.quantity.unit.is_empty() {
+            String::new()
+        } else {
+            format!(" {}", self.quantity.unit)
+        };
+        format!(
+            "{} = {}{unit} of {}{unit}",
+            self.quantity.short_name(),
+            format_significant(value, 4),
+            format_significant(self.target, 4),
+        )
+    }
+
     /// `"max |w| / h = 0.532 of 2.00 (27 %)"`, with the unit when there is one.
     pub fn describe(&self, value: f64) -> String {
         let unit = if self.quantity.unit.is_empty() {
@@ -166,7 +239,13 @@ struct Reporter {
 
 enum Output {
     Quiet,
-    Bar(ProgressBar),
+    /// The bar, the columns before its message on the message's line, and the text after the
+    /// bar (the template's `{detail}`).
+    Bar {
+        bar: ProgressBar,
+        message_offset: usize,
+        detail: Arc<Mutex<String>>,
+    },
     Lines {
         writer: Arc<Mutex<dyn Write + Send>>,
         interval: Duration,
@@ -178,7 +257,7 @@ impl std::fmt::Debug for Reporter {
     fn fmt(&self, formatter: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let output = match self.output {
             Output::Quiet => "quiet",
-            Output::Bar(_) => "terminal",
+            Output::Bar { .. } => "terminal",
             Output::Lines { .. } => "lines",
         };
         formatter
@@ -190,15 +269,27 @@ impl std::fmt::Debug for Reporter {
 }
 
 impl Reporter {
-    fn new(label: &str, sink: ProgressSink, bar: impl FnOnce() -> ProgressBar) -> Self {
+    /// `bar` makes the terminal's bar; it is given the text after the bar, for its template's
+    /// `{detail}` key; its message starts `message_offset` columns into its line.
+    fn new(
+        label: &str,
+        sink: ProgressSink,
+        message_offset: usize,
+        bar: impl FnOnce(Arc<Mutex<String>>) -> ProgressBar,
+    ) -> Self {
         let begin = Instant::now();
         let output = match sink {
             ProgressSink::Quiet => Output::Quiet,
             ProgressSink::Terminal => {
-                let bar = bar();
+                let detail = Arc::new(Mutex::new(String::new()));
+                let bar = bar(detail.clone());
                 bar.set_prefix(label.to_string());
                 bar.enable_steady_tick(Duration::from_millis(250));
-                Output::Bar(bar)
+                Output::Bar {
+                    bar,
+                    message_offset,
+                    detail,
+                }
             }
             ProgressSink::Lines { writer, interval } => Output::Lines {
                 writer,
@@ -245,9 +336,14 @@ impl Reporter {
     fn finish(&self, summary: &str) {
         match &self.output {
             Output::Quiet => {}
-            Output::Bar(bar) => {
+            Output::Bar {
+                bar,
+                message_offset,
+                ..
+            } => {
                 bar.disable_steady_tick();
-                bar.finish_with_message(summary.to_string());
+                let width = terminal_columns().saturating_sub(*message_offset);
+                bar.finish_with_message(fit_parts(&detail_parts(summary), width));
                 // indicatif leaves the cursor at the end of the bar's line: what the program
                 // prints next must start on a line of its own.
                 let _ = writeln!(std::io::stderr());
@@ -272,15 +368,21 @@ impl Progress {
     /// Reports labelled `label` (e.g. `"wrinkle run"`) of `target` into `sink`; in line mode a
     /// start line is written at once.
     pub fn new(label: &str, target: ProgressTarget, sink: ProgressSink) -> Self {
-        let reporter = Reporter::new(label, sink, || {
+        let reporter = Reporter::new(label, sink, label.chars().count() + 1, |detail| {
             let bar =
                 ProgressBar::with_draw_target(Some(BAR_RESOLUTION), ProgressDrawTarget::stderr());
+            let after_bar = move |_: &ProgressState, text: &mut dyn std::fmt::Write| {
+                if let Ok(detail) = detail.lock() {
+                    let _ = text.write_str(&detail);
+                }
+            };
             bar.set_style(
-                // Two lines: the text is never cut by the bar's width on an 80-column terminal.
+                // Two lines, each fitted to the terminal's width (see the module documentation).
                 ProgressStyle::with_template(
-                    "{prefix:.bold} {wide_msg}\n  [{bar:50.cyan/blue}] {percent:>3} % [{elapsed}]",
+                    "{prefix:.bold} {msg}\n  [{bar:36.cyan/blue}] {percent:>3} % [{elapsed}] {detail}",
                 )
                 .unwrap_or_else(|_| ProgressStyle::default_bar())
+                .with_key("detail", after_bar)
                 .progress_chars("=> "),
             );
             bar
@@ -338,9 +440,26 @@ impl Progress {
         };
         match &self.reporter.output {
             Output::Quiet => {}
-            Output::Bar(bar) => {
+            Output::Bar {
+                bar,
+                message_offset,
+                detail: after_bar,
+            } => {
+                let columns = terminal_columns();
+                let ratio = ratio.map(|r| format!("λ/λ_c = {r:.3}"));
+                let parts = [
+                    ratio.unwrap_or_default(),
+                    self.target.describe_briefly(value),
+                ];
+                let width = columns.saturating_sub(*message_offset);
                 bar.set_position((fraction * BAR_RESOLUTION as f64) as u64);
-                bar.set_message(describe());
+                if let Ok(mut after_bar) = after_bar.lock() {
+                    *after_bar = fit_parts(
+                        &detail_parts(detail),
+                        columns.saturating_sub(BAR_LINE_COLUMNS),
+                    );
+                }
+                bar.set_message(fit_parts(&parts, width));
             }
             Output::Lines { .. } => self.reporter.periodic_line(describe),
         }
@@ -362,10 +481,11 @@ pub struct SearchProgress {
 impl SearchProgress {
     /// Reports labelled `label` (e.g. `"wavenumber search"`) into `sink`.
     pub fn new(label: &str, sink: ProgressSink) -> Self {
-        let reporter = Reporter::new(label, sink, || {
+        let reporter = Reporter::new(label, sink, 2, |_| {
             let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
             bar.set_style(
-                ProgressStyle::with_template("{prefix:.bold} {spinner} [{elapsed}] {wide_msg}")
+                // The evaluation on a line of its own, fitted to the terminal's width.
+                ProgressStyle::with_template("{prefix:.bold} {spinner} [{elapsed}]\n  {msg}")
                     .unwrap_or_else(|_| ProgressStyle::default_spinner()),
             );
             bar
@@ -386,9 +506,16 @@ impl SearchProgress {
         };
         match &self.reporter.output {
             Output::Quiet => {}
-            Output::Bar(bar) => {
+            Output::Bar {
+                bar,
+                message_offset,
+                ..
+            } => {
+                let mut parts = vec![format!("evaluation {index}")];
+                parts.extend(detail_parts(detail));
+                let width = terminal_columns().saturating_sub(*message_offset);
                 bar.set_position(index as u64);
-                bar.set_message(describe());
+                bar.set_message(fit_parts(&parts, width));
             }
             Output::Lines { .. } => self.reporter.periodic_line(describe),
         }
@@ -397,5 +524,48 @@ impl SearchProgress {
     /// Ends the reports with `summary` (e.g. the minimum found).
     pub fn finish(&self, summary: &str) {
         self.reporter.finish(summary);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parts(texts: &[&str]) -> Vec<String> {
+        texts.iter().map(|t| t.to_string()).collect()
+    }
+
+    /// The bar's first line of the plate on 80 columns (issue 32: it was cut after
+    /// `max |w| / h = 0.0`): the label, λ/λ_c and the amplitude fit; on 60 columns the
+    /// amplitude is left out whole.
+    #[test]
+    fn the_bar_text_fits_the_terminal_in_whole_parts() {
+        let label = "wrinkle run (reference-envelope)";
+        let target = ProgressTarget::new(Quantity::max_amplitude_over_thickness(), 0.0, 1.0);
+        let text = parts(&["λ/λ_c = 1.019", &target.describe_briefly(0.2716)]);
+        let line = fit_parts(&text, 80 - label.chars().count() - 1);
+        assert_eq!(line, "λ/λ_c = 1.019, max |w| / h = 0.2716 of 1.000");
+        assert!(label.chars().count() + 1 + line.chars().count() <= 80);
+        assert_eq!(fit_parts(&text, 60 - 33), "λ/λ_c = 1.019");
+        // After the bar (80 − BAR_LINE_COLUMNS columns): the step and the load.
+        let after_bar = fit_parts(
+            &detail_parts("step 7, λ = 9.300000e-2"),
+            80 - BAR_LINE_COLUMNS,
+        );
+        assert_eq!(after_bar, "step 7, λ = 9.300000e-2");
+    }
+
+    /// A part that does not fit is skipped and the next ones are tried; when none fits, the
+    /// first is cut with an ellipsis; nothing fits in no room.
+    #[test]
+    fn parts_that_do_not_fit_are_left_out_whole() {
+        let text = parts(&["a long first part", "b", "cc"]);
+        assert_eq!(fit_parts(&text, 100), "a long first part, b, cc");
+        assert_eq!(fit_parts(&text, 20), "a long first part, b");
+        assert_eq!(fit_parts(&text, 18), "a long first part");
+        assert_eq!(fit_parts(&text, 6), "b, cc");
+        assert_eq!(fit_parts(&parts(&["a long first part"]), 6), "a lon…");
+        assert_eq!(fit_parts(&parts(&["", "b"]), 5), "b");
+        assert_eq!(fit_parts(&text, 0), "");
     }
 }
