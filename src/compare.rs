@@ -93,7 +93,7 @@ impl CompareRow {
 /// The exit codes of the rows from the most to the least severe: interrupted (130), a model
 /// that failed or could not start (1), a model used outside its validity (4), a path stopped
 /// before its target (3).
-const EXIT_CODES_BY_SEVERITY: [i32; 4] = [crate::error::EXIT_INTERRUPTED, 1, 4, 3];
+pub const EXIT_CODES_BY_SEVERITY: [i32; 4] = [crate::error::EXIT_INTERRUPTED, 1, 4, 3];
 
 impl Comparison {
     /// The comparison's exit code: the most severe of its rows' ([`EXIT_CODES_BY_SEVERITY`]),
