@@ -242,6 +242,9 @@ pub fn execute(command: &Command) -> Result<(), Error> {
 /// `wrinkle buckle`: the threshold as JSON or as text; exit 4 when a validity check the scene
 /// does not accept failed.
 fn buckle(scene: &Scene, json: bool, quiet: bool, out: Option<&Path>) -> Result<(), Error> {
+    if scene.geometry.domain == crate::scene::Domain::Line {
+        return print_stdout(&crate::line::buckle_command(scene, json, out)?);
+    }
     let threshold = match out {
         Some(directory) => {
             let describe = |scene: &Scene, threshold: &crate::threshold::Threshold| {
@@ -281,6 +284,11 @@ fn run(
     }
     let directory = PathBuf::from(&scene.output.directory);
     crate::interrupt::install();
+    if scene.geometry.domain == crate::scene::Domain::Line {
+        let (text, error) = crate::line::run_command(&scene, &directory)?;
+        print_stdout(&text)?;
+        return error.map_or(Ok(()), Err);
+    }
     let report = commands::run(&scene, &directory, quiet, prior.as_ref())?;
     // The summary table goes to stdout whatever the outcome. A closed pipe is not an error; a
     // stdout that cannot be written (a full disk) is, after the run's own failure if it has one.
@@ -307,6 +315,7 @@ fn compare(
     out: &Option<PathBuf>,
     quiet: bool,
 ) -> Result<(), Error> {
+    let models_named = models.to_vec();
     let models: Vec<String> = if models.is_empty() {
         wrinkle_models::catalogue()
             .into_iter()
@@ -320,6 +329,12 @@ fn compare(
     let directory = out
         .clone()
         .unwrap_or_else(|| PathBuf::from(&scene.output.directory).join("compare"));
+    if scene.geometry.domain == crate::scene::Domain::Line {
+        let comparison = crate::line::compare_line(scene, &models_named, &directory)?;
+        print_stdout(&crate::line::compare::line_comparison_text(&comparison))?;
+        message_line(&format!("comparison in {}", directory.display()));
+        return Ok(());
+    }
     let comparison = crate::compare::compare(scene, &models, model_overrides, &directory, quiet)?;
     // The table goes to stdout whatever the outcome; a model that did not reach what was asked
     // (outside its validity, stopped, failed) ends the command with the comparison's exit code,

@@ -18,7 +18,9 @@
 //!   their roles, [`scene`] parses and validates scene files (TOML plus `--set KEY=VALUE`),
 //!   [`closed_form`] holds the independent analytic truths of the clamped rectangle
 //!   (THEORY.md §8); [`error`], [`input`] (every file read with a size cap), [`interrupt`]
-//!   and [`memory`] serve every layer.
+//!   and [`memory`] serve every layer;
+//! * [`line`] is the same pipeline on a line domain (`geometry.kind = "line"`, a beam), which
+//!   `buckle`, `run` and `compare` hand a line scene to.
 
 pub mod analytic;
 pub mod bench;
@@ -30,6 +32,7 @@ pub mod compare;
 pub mod error;
 pub mod input;
 pub mod interrupt;
+pub mod line;
 pub mod memory;
 pub mod output;
 pub mod physics;

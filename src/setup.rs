@@ -101,7 +101,18 @@ pub fn unknown_model(scene: &Scene) -> Error {
 
 /// The field layout of `M` from its declared roles, or a scene error naming `model.name`.
 pub fn layout_of<M: EnergyModel>(scene: &Scene) -> Result<Layout, Error> {
-    Layout::from_spec(M::SPEC).map_err(|message| scene_error(scene, "model.name", message))
+    Layout::from_spec(M::SPEC).map_err(|message| {
+        let message = if crate::line::LineLayout::from_spec(M::SPEC).is_ok() {
+            format!(
+                "model `{}` is a line model and the scene's domain is a plane: set \
+                 geometry.kind = \"line\" ({message})",
+                M::SPEC.name
+            )
+        } else {
+            message
+        };
+        scene_error(scene, "model.name", message)
+    })
 }
 
 /// The boundary specifications of a load preset (module documentation), by boundary name.

@@ -43,7 +43,7 @@ pub(super) fn check_across_keys(scene: &Scene) -> Result<(), KeyError> {
     check_stiffness(scene)?;
     check_thickness_ratio(scene)?;
     check_wavenumber(scene)?;
-    check_mesh(scene)?;
+    check_domain(scene)?;
     check_tension(scene)?;
     check_imperfection(scene)?;
     check_vtu_loads(scene)
@@ -254,6 +254,19 @@ fn check_wavenumber(scene: &Scene) -> Result<(), KeyError> {
 
 /// At most [`MAX_ELEMENTS`] elements, none longer than [`MAX_ELEMENT_ASPECT_RATIO`] times its
 /// width.
+/// A plane's mesh ([`check_mesh`]); profiles only on a line (the plane pipeline does not apply
+/// them yet).
+fn check_domain(scene: &Scene) -> Result<(), KeyError> {
+    match scene.geometry.domain {
+        super::Domain::Plane if !scene.model.profiles.is_empty() => Err(KeyError::new(
+            "model.profiles",
+            "parameter profiles are applied on line domains (geometry.kind = \"line\") only",
+        )),
+        super::Domain::Plane => check_mesh(scene),
+        super::Domain::Line => Ok(()),
+    }
+}
+
 fn check_mesh(scene: &Scene) -> Result<(), KeyError> {
     let (elements_x, elements_y) = (scene.mesh.elements_x, scene.mesh.elements_y);
     let elements = elements_x.saturating_mul(elements_y);

@@ -11,7 +11,7 @@ use super::declare::{scene_enum, scene_schema};
 use super::keys::{Alias, Schema, Unit};
 use super::kinds::{
     AutoOrNumber, Boundary, BoundarySpec, ChoiceList, Count, Flag, Float, FloatList, ModelName,
-    OptionalPath, Scalar, Table, Text, number_or_auto, one_of,
+    OptionalPath, PointTable, Scalar, Table, Text, number_or_auto, one_of,
 };
 use std::collections::BTreeMap;
 use toml::Value;
@@ -69,6 +69,10 @@ scene_schema! {
         /// width $`L_Y`$ along Y
         ly => length_y: f64 = 200.0,
             Float::at_least(LENGTH_RANGE.0).at_most(LENGTH_RANGE.1), Unit::MM;
+        /// `"plane"`: the rectangle (or `mesh.file`); `"line"`: the segment $`[0, L_X]`$ of a
+        /// beam (`lx` its length, `ly` unused), ends `left` and `right`, line models only
+        /// (`docs/beam.md`, "The CLI on a line")
+        kind => domain: Domain = Domain::Plane, one_of::<Domain>(), Unit::NONE;
     }
 
     /// Isotropic linear elastic sheet.
@@ -116,6 +120,11 @@ scene_schema! {
         /// model parameters by name, the table `[model.parameters]` (below)
         parameters => parameters: BTreeMap<String, f64> = BTreeMap::new(),
             Table::of(Float::finite(), "model parameters"), Unit::NONE;
+        /// parameters declared `[varying]` as piecewise-linear functions of X, the table
+        /// `[model.profiles]`: `NAME = [[X0, p0], [X1, p1], …]`, constant beyond the first and
+        /// last points (line domains; `docs/dsl.md`)
+        profiles => profiles: BTreeMap<String, Vec<[f64; 2]>> = BTreeMap::new(),
+            Table::of(PointTable, "parameter profiles"), Unit::NONE;
     }
 
     /// Structured Q8 mesh of the rectangle.
@@ -350,6 +359,16 @@ scene_enum! {
         Strip = "strip",
         /// No preset: the conditions and loads of `load.boundary` only.
         Boundaries = "boundaries",
+    }
+}
+
+scene_enum! {
+    /// The domain of a scene (`geometry.kind`).
+    pub enum Domain {
+        /// A plane sheet: the rectangle of `geometry`, or a mesh file.
+        Plane = "plane",
+        /// A beam: the segment $`[0, L_X]`$ with ends `left` and `right`.
+        Line = "line",
     }
 }
 

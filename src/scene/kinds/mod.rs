@@ -11,10 +11,12 @@ mod boundary;
 mod collection;
 mod name;
 mod number;
+mod points;
 mod value;
 
 pub use boundary::{Boundary, BoundarySpec, Component, InPlane, OptionalPath, Transverse};
 pub use collection::{ChoiceList, FloatList, Table};
 pub use name::{Choices, Flag, ModelName, Text, one_of};
 pub use number::{AutoOrNumber, Count, Float, number_or_auto};
+pub use points::PointTable;
 pub use value::{Problem, Scalar, ValueKind, Written};
