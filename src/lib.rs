@@ -19,8 +19,8 @@
 //!   [`closed_form`] holds the independent analytic truths of the clamped rectangle
 //!   (THEORY.md §8); [`error`], [`input`] (every file read with a size cap), [`interrupt`]
 //!   and [`memory`] serve every layer;
-//! * [`line`] is the same pipeline on a line domain (`geometry.kind = "line"`, a beam), which
-//!   `buckle`, `run` and `compare` hand a line scene to.
+//! * [`line`](mod@line) is the same pipeline on a line domain (`geometry.kind = "line"`, a
+//!   beam), which `buckle`, `run` and `compare` hand a line scene to.
 
 pub mod analytic;
 pub mod bench;

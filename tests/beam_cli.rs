@@ -180,7 +180,19 @@ fn a_model_on_the_wrong_domain_or_a_constant_parameter_profiled_exits_2() {
         message.contains("reference-envelope") && message.contains("line"),
         "{message}"
     );
-    let message = scene_error(&["buckle", "--set", "model.name=beam-full"]);
+    let message = scene_error(&[
+        "buckle",
+        "--set",
+        "model.name=beam-full",
+        "--set",
+        "model.parameters.bending_stiffness=1.0",
+        "--set",
+        "model.parameters.axial_stiffness=1200.0",
+        "--set",
+        "model.parameters.foundation=1.0",
+        "--set",
+        "model.parameters.foundation_cubic=2.0",
+    ]);
     assert!(
         message.contains("beam-full") && message.contains("geometry.kind"),
         "{message}"

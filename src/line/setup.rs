@@ -92,10 +92,11 @@ pub fn build_line_problem<M: EnergyModel>(scene: &Scene, model: M) -> Result<Pro
 }
 
 fn problem_error(scene: &Scene, key: &str, error: ProblemError) -> Error {
-    match error {
-        ProblemError::Dofs(_) | ProblemError::ParameterNotVarying { .. } => {
-            scene_error(scene, key, error.to_string())
+    match &error {
+        ProblemError::ParameterNotVarying { parameter, .. } => {
+            scene_error(scene, &format!("{key}.{parameter}"), error.to_string())
         }
+        ProblemError::Dofs(_) => scene_error(scene, key, error.to_string()),
         other => Error::Solver(format!("setting up the problem: {other}")),
     }
 }

@@ -18,6 +18,9 @@ use wrinkle_runtime::solve::buckling::{LinearBuckling, LinearBucklingOptions, li
 /// (neighbouring wave counts differ by $`4EI(\pi/L)^2`$).
 const MAX_KRYLOV: usize = 150;
 
+/// Points $`(X, \text{value})`$ along the beam.
+pub type Samples = Vec<(f64, f64)>;
+
 /// The threshold of a line scene.
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct LineThreshold {
@@ -40,11 +43,11 @@ pub struct LineThreshold {
     /// The first mode's physical deflection $`(X, w)`$, scaled to a unit peak (written to
     /// `mode_profile.csv`, not to the JSON).
     #[serde(skip)]
-    pub mode: Vec<(f64, f64)>,
+    pub mode: Samples,
     /// The first mode's envelope amplitude $`(X, 2|v_1|)`$ on the same scale (envelope
     /// models; empty otherwise).
     #[serde(skip)]
-    pub mode_envelope: Vec<(f64, f64)>,
+    pub mode_envelope: Samples,
     /// Seconds of the analysis.
     pub seconds: f64,
 }
@@ -104,7 +107,7 @@ fn mode_profiles<M: EnergyModel>(
     layout: &LineLayout,
     buckling: &LinearBuckling,
     wavenumber: f64,
-) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
+) -> (Samples, Samples) {
     let global = problem.dofs().expand(&buckling.modes[0], 0.0);
     let mesh = problem.assembler.mesh();
     let xs = sample_positions(scene.geometry.length_x, wavenumber);
