@@ -9,7 +9,7 @@
 use crate::closed_form::stress_function::{self, StressFunctionConvergence};
 use crate::closed_form::{self, ClampedRectangle, GalerkinIntegrals};
 use crate::error::Error;
-use crate::scene::{LoadKind, Scene, Wavenumber};
+use crate::scene::{Direction, LoadKind, Scene, Wavenumber};
 use serde_json::{Value, json};
 use std::fmt::Write as _;
 
@@ -137,13 +137,17 @@ pub fn closed_form_rectangle(scene: &Scene) -> Result<ClampedRectangle, Error> {
             ),
         ));
     }
-    if scene.model.direction_degrees != 0.0 {
+    if scene.model.direction != Direction::Fixed(0.0) {
         return Err(Error::scene(
             scene.origin_of("model.direction"),
             "model.direction",
             format!(
                 "the closed forms assume the wave vector along X (0 degrees), got {}",
-                scene.model.direction_degrees
+                scene
+                    .model
+                    .direction
+                    .fixed_degrees()
+                    .map_or_else(|| "\"auto\"".to_string(), |d| d.to_string())
             ),
         ));
     }

@@ -211,7 +211,7 @@ fn write_mode<M: EnergyModel>(
         layout,
         values: &values,
         wavenumber: threshold.wavenumber.unwrap_or(0.0),
-        direction: scene.model.direction_degrees.to_radians(),
+        direction: threshold.direction_degrees.to_radians(),
     };
     if layout.is_envelope() {
         extra.push(PointArray::scalar(

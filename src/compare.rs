@@ -13,6 +13,8 @@
 
 mod overlay;
 
+pub use overlay::{ModelState, read_state};
+
 use crate::error::{Error, io_error, output_directory_error};
 use crate::output::{
     DirectoryLock, Quantity, Response, ResponsePoint, plot_comparison, write_bytes_atomically,
@@ -186,8 +188,12 @@ fn response_of(model: &str, summary: &RunSummary, load: &Quantity) -> Option<Res
 /// wavelength (with a tenth to spare, a multiple of 4), the other side refined too so that
 /// elements are at most 4 times longer than wide; `None` when the scene's mesh already
 /// resolves `wavelength` (mm).
-fn resolving_mesh(scene: &Scene, wavelength: f64) -> Option<(usize, usize)> {
-    let theta = scene.model.direction_degrees.to_radians();
+fn resolving_mesh(
+    scene: &Scene,
+    wavelength: f64,
+    direction_degrees: f64,
+) -> Option<(usize, usize)> {
+    let theta = direction_degrees.to_radians();
     let along_y = theta.sin().abs() > theta.cos().abs();
     let (nx, ny) = (scene.mesh.elements_x, scene.mesh.elements_y);
     let (lx, ly) = (scene.geometry.length_x, scene.geometry.length_y);
@@ -238,7 +244,13 @@ fn model_scene(
     }
     let carrier = wavenumber_model.threshold(quiet)?;
     let wavelength = std::f64::consts::TAU / carrier.wavenumber;
-    let Some((nx, ny)) = resolving_mesh(&one, wavelength) else {
+    // `"auto"`: the plate's waves are taken along the wavenumber model's direction.
+    let direction = one
+        .model
+        .direction
+        .fixed_degrees()
+        .unwrap_or(carrier.direction_degrees);
+    let Some((nx, ny)) = resolving_mesh(&one, wavelength, direction) else {
         return Ok((one, None));
     };
     let note = format!(
@@ -340,7 +352,15 @@ pub fn compare(
         reference: reference.map(|(model, _)| model),
     };
     let profiles = match overlay_load {
-        Some(load) => overlay::write_profile_overlay(scene, models, load, directory)?,
+        Some(load) => {
+            // `"auto"`: the line runs along the wavenumber model's direction.
+            let direction = scene.model.direction.fixed_degrees().unwrap_or_else(|| {
+                wavenumber_model
+                    .threshold(quiet)
+                    .map_or(0.0, |carrier| carrier.direction_degrees)
+            });
+            overlay::write_profile_overlay(scene, models, load, direction, directory)?
+        }
         None => false,
     };
     write_comparison(scene, &comparison, &responses, profiles, directory)?;
@@ -616,15 +636,14 @@ mod tests {
             (400.0, 200.0)
         );
         let wavelength = 26.6876;
-        assert_eq!(resolving_mesh(&scene, wavelength), Some((132, 17)));
+        assert_eq!(resolving_mesh(&scene, wavelength, 0.0), Some((132, 17)));
         let mut fine = scene.clone();
         fine.mesh.elements_x = 128;
         fine.mesh.elements_y = 32;
-        assert_eq!(resolving_mesh(&fine, wavelength), None);
+        assert_eq!(resolving_mesh(&fine, wavelength, 0.0), None);
         // Waves along Y (the strip): Y is refined.
-        let mut along_y = scene.clone();
-        along_y.model.direction_degrees = 90.0;
-        let (nx, ny) = resolving_mesh(&along_y, wavelength).unwrap();
+        let along_y = scene.clone();
+        let (nx, ny) = resolving_mesh(&along_y, wavelength, 90.0).unwrap();
         assert!(
             ny as f64 * wavelength / 200.0 >= 8.0 && nx >= 32,
             "{nx}×{ny}"

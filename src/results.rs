@@ -152,7 +152,7 @@ impl RunContext<'_> {
             layout: self.layout,
             values,
             wavenumber: self.threshold.wavenumber.unwrap_or(0.0),
-            direction: self.scene.model.direction_degrees.to_radians(),
+            direction: self.threshold.direction_degrees.to_radians(),
         }
     }
 

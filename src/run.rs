@@ -170,7 +170,7 @@ fn add_mode_imperfection<M: EnergyModel>(
         layout,
         values: &values,
         wavenumber: threshold.wavenumber.unwrap_or(0.0),
-        direction: scene.model.direction_degrees.to_radians(),
+        direction: threshold.direction_degrees.to_radians(),
     };
     let amplitude = snapshot.max_amplitude();
     if !(amplitude.is_finite() && amplitude > 0.0) {
@@ -240,6 +240,8 @@ struct PathRecorder<'a, M: EnergyModel> {
     problem: &'a Problem<M>,
     layout: &'a Layout,
     wavenumber: f64,
+    /// Wave direction (radians from X) of the threshold.
+    direction: f64,
     wavelength: f64,
     critical_load: f64,
     closed_form: Option<(f64, f64)>,
@@ -259,7 +261,7 @@ impl<M: EnergyModel> PathRecorder<'_, M> {
             layout: self.layout,
             values,
             wavenumber: self.wavenumber,
-            direction: self.scene.model.direction_degrees.to_radians(),
+            direction: self.direction,
         }
     }
 
@@ -460,6 +462,7 @@ impl<'a, M: EnergyModel> PathRecorder<'a, M> {
             problem,
             layout,
             wavenumber: threshold.wavenumber.unwrap_or(0.0),
+            direction: threshold.direction_degrees.to_radians(),
             wavelength: threshold.wavelength.unwrap_or(shortest / 4.0),
             critical_load: threshold.critical_load(),
             closed_form,

@@ -524,7 +524,7 @@ fn write_local_wavenumber(
         return Ok(None);
     };
     let bounds = context.mesh.bounds();
-    let theta = context.scene.model.direction_degrees.to_radians();
+    let theta = context.threshold.direction_degrees.to_radians();
     let (c, s) = (theta.cos(), theta.sin());
     // The part of the line through `peak` along e inside the rectangle.
     let along = |t: f64| [peak[0] + t * c, peak[1] + t * s];

@@ -50,7 +50,12 @@ pub fn configure_model<M: EnergyModel>(
             "young" => scene.material.young_modulus,
             "poisson" => scene.material.poisson_ratio,
             "thickness" => scene.material.thickness,
-            "direction" => scene.model.direction_degrees.to_radians(),
+            "direction" => scene
+                .model
+                .direction
+                .fixed_degrees()
+                .unwrap_or(0.0)
+                .to_radians(),
             "wavenumber" => wavenumber,
             other => match scene.model.parameters.get(other) {
                 Some(v) => *v,

@@ -45,6 +45,7 @@
 //!   membrane's envelope) that is pointwise unstable over most of the area at
 //!   [`WELL_POSEDNESS_LOAD_RATIO`]$`\,\lambda_c`$ on the fundamental branch.
 
+mod direction;
 mod result;
 mod reuse;
 mod scene_quantities;
@@ -66,7 +67,7 @@ pub use wavenumber_model::{CarrierThreshold, WAVENUMBER_MODEL_KEY, WavenumberMod
 
 use crate::error::Error;
 use crate::physics::{Layout, Snapshot, wavelength_along_line};
-use crate::scene::{LoadKind, PathMethod, Scene, Wavenumber};
+use crate::scene::{Direction, LoadKind, PathMethod, Scene, Wavenumber};
 use crate::setup::{build_problem, configure_model, layout_of, unknown_model};
 use std::f64::consts::PI;
 use steps::ThresholdSteps;
@@ -114,13 +115,30 @@ pub fn find_threshold<M: EnergyModel>(
 /// the scene: a fixed `model.wavenumber`; the minimiser of $`\lambda_c(Q)`$ for a model that
 /// selects its own; the minimiser of `model.wavenumber_model` for one that does not; none for
 /// a model that resolves its wrinkles on the mesh.
+///
+/// With `model.direction = "auto"` the wave direction is chosen first ([`direction`]): the
+/// threshold is then that of the scene with the direction fixed at the chosen angle.
 pub fn find_threshold_with<M: EnergyModel>(
     scene: &Scene,
     problem: &mut Problem<M>,
     factor: &mut SparseFactorization,
     options: &ThresholdOptions,
 ) -> Result<Threshold, Error> {
+    match scene.model.direction {
+        Direction::Fixed(_) => fixed_direction_threshold(scene, problem, factor, options),
+        Direction::Auto => direction::auto_direction_threshold(scene, problem, factor, options),
+    }
+}
+
+/// [`find_threshold_with`] for a scene whose `model.direction` is an angle.
+fn fixed_direction_threshold<M: EnergyModel>(
+    scene: &Scene,
+    problem: &mut Problem<M>,
+    factor: &mut SparseFactorization,
+    options: &ThresholdOptions,
+) -> Result<Threshold, Error> {
     let start = std::time::Instant::now();
+    let direction = scene.model.direction.fixed_degrees().unwrap_or(0.0);
     let layout = layout_of::<M>(scene)?;
     require_free_primary_dofs(scene, problem, &layout, M::SPEC.fields[layout.primary])?;
     let own = WavenumberModel::of(scene)?;
@@ -137,7 +155,7 @@ pub fn find_threshold_with<M: EnergyModel>(
     let found = steps.critical_point(problem, factor, options.prior)?;
     let wavelength = match found.wavenumber {
         Some(q) => Some(2.0 * PI / q),
-        None => mode_wavelength(scene, problem, &layout, &found.buckling),
+        None => mode_wavelength(scene, problem, &layout, &found.buckling, direction),
     };
     let mut threshold = Threshold {
         model: M::SPEC.name,
@@ -148,20 +166,33 @@ pub fn find_threshold_with<M: EnergyModel>(
         wavenumber: found.wavenumber,
         wavelength,
         wavenumber_source: found.source,
+        direction_degrees: direction,
+        direction_source: "fixed".into(),
         search: found.search,
         notes: steps.notes,
         warnings: Vec::new(),
         dofs: problem.free_count(),
         seconds: 0.0,
     };
-    threshold.warnings = validity_warnings(scene, &layout, &threshold);
-    threshold.warnings.extend(well_posedness_beyond(
+    threshold.warnings = threshold_checks(scene, problem, &layout, &threshold);
+    threshold.seconds = start.elapsed().as_secs_f64();
+    Ok(threshold)
+}
+
+/// The failed validity checks of `threshold` (module documentation), found on `problem`.
+fn threshold_checks<M: EnergyModel>(
+    scene: &Scene,
+    problem: &Problem<M>,
+    layout: &Layout,
+    threshold: &Threshold,
+) -> Vec<ValidityWarning> {
+    let mut warnings = validity_warnings(scene, layout, threshold);
+    warnings.extend(well_posedness_beyond(
         problem,
         &threshold.buckling,
         threshold.reference_load,
     ));
-    threshold.seconds = start.elapsed().as_secs_f64();
-    Ok(threshold)
+    warnings
 }
 
 /// A scene error naming `mesh.nx` when the primary field (the deflection or envelope) has no
@@ -198,12 +229,13 @@ pub fn analyse<M: EnergyModel>(problem: &Problem<M>) -> Result<SparseFactorizati
 }
 
 /// The plate's wavelength, read from its first mode along the line through the mode's largest
-/// deflection in the wave direction.
+/// deflection in the wave direction (`direction`, degrees from X).
 fn mode_wavelength<M: EnergyModel>(
     scene: &Scene,
     problem: &Problem<M>,
     layout: &Layout,
     buckling: &LinearBuckling,
+    direction: f64,
 ) -> Option<f64> {
     let mode = buckling.modes.first()?;
     let mesh = problem.assembler.mesh();
@@ -221,7 +253,7 @@ fn mode_wavelength<M: EnergyModel>(
         layout,
         values: &values,
         wavenumber: 0.0,
-        direction: scene.model.direction_degrees.to_radians(),
+        direction: direction.to_radians(),
     };
     let length = 2.0 * scene.geometry.length_x.hypot(scene.geometry.length_y);
     wavelength_along_line(&snapshot, [peak[0], peak[1]], length)

@@ -3,7 +3,7 @@
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 use wrinkle::Error;
-use wrinkle::scene::{LoadKind, PathMethod, Scene, Wavenumber};
+use wrinkle::scene::{Direction, LoadKind, PathMethod, Scene, Wavenumber};
 
 fn example(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -62,7 +62,7 @@ fn long_strip_example_is_the_papers_example_two() {
     assert_eq!(scene.material.young_modulus, 70000.0);
     assert_eq!(scene.material.poisson_ratio, 0.3);
     assert_eq!(scene.load.kind, LoadKind::Strip);
-    assert_eq!(scene.model.direction_degrees, 90.0);
+    assert_eq!(scene.model.direction, Direction::Fixed(90.0));
     assert_eq!((scene.mesh.elements_x, scene.mesh.elements_y), (56, 16));
     assert_eq!(scene.model.wavenumber, Wavenumber::Auto);
 }

@@ -9,7 +9,7 @@
 use std::process::{Command, Output};
 use std::time::{Duration, Instant};
 use wrinkle::Error;
-use wrinkle::scene::{Scene, Wavenumber};
+use wrinkle::scene::{Direction, Scene, Wavenumber};
 
 fn wrinkle(arguments: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_wrinkle"))
@@ -85,7 +85,7 @@ fn model_parameter_young_is_validated_like_material_young() {
     ])
     .unwrap();
     assert_eq!(scene.material.young_modulus, 1000.0);
-    assert_eq!(scene.model.direction_degrees, 0.5f64.to_degrees());
+    assert_eq!(scene.model.direction, Direction::Fixed(0.5f64.to_degrees()));
     assert!(scene.to_toml_string().contains("young = 1000.0"));
 }
 

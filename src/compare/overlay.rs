@@ -15,17 +15,23 @@ use crate::scene::Scene;
 use std::path::Path;
 use wrinkle_runtime::fem::{ElementKind, Mesh};
 
-/// A model's state at the common load, read back from its VTU file.
-struct ModelState {
-    model: String,
-    mesh: Mesh,
-    layout: Layout,
-    values: Vec<f64>,
-    wavenumber: f64,
+/// A model's state at one load, read back from its VTU file ([`read_state`]).
+pub struct ModelState {
+    /// Registry name of the model.
+    pub model: String,
+    /// The Q8 mesh of the file.
+    pub mesh: Mesh,
+    /// The model's fields by role.
+    pub layout: Layout,
+    /// The fields, node-major.
+    pub values: Vec<f64>,
+    /// The carrier wavenumber (0 for a plate).
+    pub wavenumber: f64,
 }
 
 impl ModelState {
-    fn snapshot<'a>(&'a self, direction: f64) -> Snapshot<'a> {
+    /// The state with the wave direction `direction` (radians from X).
+    pub fn snapshot<'a>(&'a self, direction: f64) -> Snapshot<'a> {
         Snapshot {
             mesh: &self.mesh,
             layout: &self.layout,
@@ -39,7 +45,12 @@ impl ModelState {
 /// Reads `MODEL/fields_load_L.vtu`: the Q8 mesh, the model's fields node-major, the carrier
 /// wavenumber of the field data (0 for a plate). `None` when the file is missing (the path did
 /// not reach the load) or not readable.
-fn read_state(directory: &Path, model: &str, load: f64, requested: &[f64]) -> Option<ModelState> {
+pub fn read_state(
+    directory: &Path,
+    model: &str,
+    load: f64,
+    requested: &[f64],
+) -> Option<ModelState> {
     use vtkio::model::{Attribute, DataSet, Piece, VertexNumbers};
     let spec = wrinkle_models::catalogue()
         .into_iter()
@@ -100,15 +111,17 @@ fn field_data_number(xml: &str, name: &str) -> Option<f64> {
 }
 
 /// Writes `compare_profiles.png/.svg` for the `models` that reached `load` (at least two), or
-/// nothing; says whether it wrote them. The line runs along the wave direction through the largest envelope amplitude of
-/// the first envelope model (the plate's largest $`|w|`$ when there is none).
+/// nothing; says whether it wrote them. The line runs along the wave direction through the
+/// largest envelope amplitude of the first envelope model (the plate's largest $`|w|`$ when
+/// there is none), at `direction_degrees` from X.
 pub fn write_profile_overlay(
     scene: &Scene,
     models: &[String],
     load: f64,
+    direction_degrees: f64,
     directory: &Path,
 ) -> Result<bool, Error> {
-    let direction = scene.model.direction_degrees.to_radians();
+    let direction = direction_degrees.to_radians();
     // Every model ran with the scene's VTU loads and `load` after them: the file names come
     // from that list (`fields_file_at` keeps them distinct).
     let requested: Vec<f64> = scene

@@ -114,9 +114,14 @@ scene_schema! {
         /// uses none
         wavenumber_model => wavenumber_model: String = REFERENCE_MODEL.to_string(),
             ModelName, Unit::NONE;
-        /// angle of the wave vector from the X axis (example 2 uses 90)
-        direction => direction_degrees: f64 = 0.0,
-            Float::at_least(-360.0).at_most(360.0), Unit::DEGREES_FROM_X;
+        /// angle of the wave vector from the X axis (example 2 uses 90), or `"auto"`: the angle
+        /// where the threshold is lowest, searched from the principal compression direction of
+        /// the pre-buckling state where the first mode lives, to 0.1° (a plate reads it from
+        /// its mode; `complex-envelope` and `pure-membrane` take the `wavenumber_model`'s);
+        /// the summary says which angle was chosen and how
+        direction => direction: Direction = Direction::Fixed(0.0),
+            number_or_auto::<Direction>(Float::at_least(-360.0).at_most(360.0)),
+            Unit::DEGREES_FROM_X;
         /// model parameters by name, the table `[model.parameters]` (below)
         parameters => parameters: BTreeMap<String, f64> = BTreeMap::new(),
             Table::of(Float::finite(), "model parameters"), Unit::NONE;
@@ -346,6 +351,37 @@ impl AutoOrNumber for Wavenumber {
         match self {
             Wavenumber::Auto => None,
             Wavenumber::Fixed(number) => Some(number),
+        }
+    }
+}
+
+/// Direction of the wave vector of the wrinkles (`model.direction`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Direction {
+    /// Chosen where the threshold is lowest (`crate::threshold`'s direction search).
+    Auto,
+    /// Prescribed angle from X (degrees).
+    Fixed(f64),
+}
+
+impl Direction {
+    /// The prescribed angle in degrees, `None` for `"auto"`.
+    pub fn fixed_degrees(self) -> Option<f64> {
+        self.number()
+    }
+}
+
+impl AutoOrNumber for Direction {
+    const AUTO: Self = Direction::Auto;
+
+    fn fixed(number: f64) -> Self {
+        Direction::Fixed(number)
+    }
+
+    fn number(self) -> Option<f64> {
+        match self {
+            Direction::Auto => None,
+            Direction::Fixed(number) => Some(number),
         }
     }
 }

@@ -23,6 +23,13 @@ pub struct Threshold {
     /// `"fixed"`, `"auto"` (minimised), `"auto (MODEL)"` (the minimiser of `MODEL`, the scene's
     /// `model.wavenumber_model`), `"auto (reused)"` or `"mode"` (plate).
     pub wavenumber_source: String,
+    /// Direction $`\theta`$ of the wave vector (degrees from X): `model.direction`, or the
+    /// angle chosen for `"auto"`.
+    pub direction_degrees: f64,
+    /// How the direction was found: `"fixed"` (`model.direction`), `"auto (lowest threshold)"`
+    /// (minimised), `"auto (mode)"` (a plate's mode) or `"auto (MODEL)"` (the wavenumber
+    /// model's); a note says how.
+    pub direction_source: String,
     /// Linear buckling analyses done.
     pub evaluations: usize,
     /// The wavenumber search, when there was one.

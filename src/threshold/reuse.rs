@@ -13,7 +13,7 @@
 //! computed with its default, [`REFERENCE_MODEL`], and is read as such.
 
 use crate::error::Error;
-use crate::scene::{Scene, Wavenumber};
+use crate::scene::{Direction, Scene, Wavenumber};
 use serde_json::Value;
 use std::path::Path;
 use wrinkle_models::REFERENCE_MODEL;
@@ -30,6 +30,9 @@ pub struct PriorThreshold {
     pub wavenumber: f64,
     /// The critical load found there (the unit of the scene's load).
     pub critical_load: f64,
+    /// The wave direction found there (degrees from X), read for a scene with
+    /// `model.direction = "auto"` (whose direction search it replaces too).
+    pub direction_degrees: Option<f64>,
 }
 
 impl PriorThreshold {
@@ -99,10 +102,21 @@ impl PriorThreshold {
         })?;
         let critical_load = number("critical_load")
             .ok_or_else(|| fail("", "no positive `critical_load` in the file".into()))?;
+        let direction_degrees = match scene.model.direction {
+            Direction::Fixed(_) => None,
+            Direction::Auto => Some(
+                threshold
+                    .get("direction")
+                    .and_then(Value::as_f64)
+                    .filter(|d| d.is_finite())
+                    .ok_or_else(|| fail("", "no `direction` in the file".into()))?,
+            ),
+        };
         Ok(PriorThreshold {
             file,
             wavenumber,
             critical_load,
+            direction_degrees,
         })
     }
 }

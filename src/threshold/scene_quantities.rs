@@ -3,7 +3,7 @@
 //! it applies.
 
 use super::validity::MIN_WAVELENGTH_OVER_THICKNESS;
-use crate::scene::{LoadKind, Scene};
+use crate::scene::{Direction, LoadKind, Scene};
 use std::f64::consts::PI;
 
 /// Wavenumber range $`[2\pi/L_\min, 2\pi/(20h)]`$ (1/mm) the search scans.
@@ -29,7 +29,7 @@ pub fn load_unit(scene: &Scene) -> &'static str {
 /// is a clamped rectangle under biaxial load with waves along X: boundary conditions that are
 /// the `biaxial` preset's, whether written by the preset or by hand.
 pub fn closed_form_threshold(scene: &Scene) -> Option<(f64, f64)> {
-    (crate::setup::is_biaxial_rectangle(scene) && scene.model.direction_degrees == 0.0)
+    (crate::setup::is_biaxial_rectangle(scene) && scene.model.direction == Direction::Fixed(0.0))
         .then(|| scene.clamped_rectangle().critical_point())
         .flatten()
 }

@@ -365,7 +365,11 @@ fn direction_hint(scene: &Scene) -> String {
     /// Angle between the wave vector and the compression beyond which a failed search names
     /// `model.direction`.
     const DIRECTION_HINT_DEGREES: f64 = 10.0;
-    let theta = scene.model.direction_degrees.to_radians();
+    // "auto" chooses the direction itself.
+    let Some(degrees) = scene.model.direction.fixed_degrees() else {
+        return String::new();
+    };
+    let theta = degrees.to_radians();
     let (compressed, expected) = match scene.load.kind {
         LoadKind::Biaxial => ("along X (λ = −N_X)", 0.0),
         LoadKind::Strip => ("across the strip, along Y, near its middle", 90.0),
@@ -380,7 +384,7 @@ fn direction_hint(scene: &Scene) -> String {
         format!(
             " The {} load compresses the sheet {compressed}, but the wave vector is at model.direction = {}° from X: set model.direction = {expected}{}.",
             scene.load.kind.as_str(),
-            scene.model.direction_degrees,
+            degrees,
             if scene.load.kind == LoadKind::Strip {
                 " (as examples/scenes/long_strip.toml does)"
             } else {

@@ -51,6 +51,10 @@ pub struct ThresholdSummary {
     pub wavelength: Option<f64>,
     /// Where $`Q`$ came from ([`Threshold::wavenumber_source`]).
     pub wavenumber_mode: String,
+    /// Wave direction $`\theta`$ (degrees from X, [`Threshold::direction_degrees`]).
+    pub direction: f64,
+    /// How it was found ([`Threshold::direction_source`]).
+    pub direction_mode: String,
     /// Free unknowns.
     pub dofs: usize,
     /// Elements of the mesh.
@@ -96,6 +100,8 @@ impl ThresholdSummary {
             wavenumber: threshold.wavenumber,
             wavelength: threshold.wavelength,
             wavenumber_mode: threshold.wavenumber_source.clone(),
+            direction: threshold.direction_degrees,
+            direction_mode: threshold.direction_source.clone(),
             dofs: threshold.dofs,
             elements: scene.mesh.elements_x * scene.mesh.elements_y,
             buckling_evaluations: threshold.evaluations,

@@ -95,7 +95,7 @@ pub(super) fn validity_warnings(
     }
     if let (Some(l), false) = (threshold.wavelength, layout.is_envelope()) {
         // Element size along the wave direction (X, or Y for waves along Y as in the strip).
-        let theta = scene.model.direction_degrees.to_radians();
+        let theta = threshold.direction_degrees.to_radians();
         let (element, axis) = if theta.sin().abs() > theta.cos().abs() {
             (scene.geometry.length_y / scene.mesh.elements_y as f64, "Y")
         } else {

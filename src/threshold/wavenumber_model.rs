@@ -27,6 +27,8 @@ pub struct CarrierThreshold {
     pub wavenumber: f64,
     /// Its critical load $`\lambda_c`$ at that $`Q`$.
     pub critical_load: f64,
+    /// Its wave direction (degrees from X): `model.direction`, or the angle it chose.
+    pub direction_degrees: f64,
 }
 
 /// The wavenumber model of a scene, with its threshold once computed.
@@ -84,6 +86,15 @@ impl WavenumberModel {
     pub fn of(scene: &Scene) -> Result<Option<Self>, Error> {
         let helper = Self::for_scene(scene)?;
         Ok((scene.model.name != helper.name()).then_some(helper))
+    }
+
+    /// The wavenumber model of `scene` with its threshold there already known (`found`, e.g.
+    /// computed on the same scene with `model.direction = "auto"`, which chose the direction
+    /// `scene` fixes).
+    pub(super) fn with_threshold(scene: &Scene, found: CarrierThreshold) -> Result<Self, Error> {
+        let model = Self::for_scene(scene)?;
+        let _ = model.found.set(found);
+        Ok(model)
     }
 
     /// Registry name of the wavenumber model.
@@ -164,6 +175,7 @@ impl ModelVisitor for CarrierVisitor<'_> {
         Ok(CarrierThreshold {
             wavenumber,
             critical_load: threshold.critical_load(),
+            direction_degrees: threshold.direction_degrees,
         })
     }
 }
