@@ -36,6 +36,7 @@ pub mod line;
 pub mod memory;
 pub mod output;
 pub mod physics;
+pub mod region_measures;
 pub mod results;
 pub mod run;
 pub mod run_figures;
