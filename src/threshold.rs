@@ -116,7 +116,7 @@ pub fn find_threshold<M: EnergyModel>(
 /// selects its own; the minimiser of `model.wavenumber_model` for one that does not; none for
 /// a model that resolves its wrinkles on the mesh.
 ///
-/// With `model.direction = "auto"` the wave direction is chosen first ([`direction`]): the
+/// With `model.direction = "auto"` the wave direction is chosen first (module `direction`): the
 /// threshold is then that of the scene with the direction fixed at the chosen angle.
 pub fn find_threshold_with<M: EnergyModel>(
     scene: &Scene,
