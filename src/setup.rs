@@ -206,12 +206,10 @@ pub fn load_is_displacement(scene: &Scene) -> bool {
 /// structured rectangle.
 pub fn build_mesh(scene: &Scene) -> Result<Mesh, Error> {
     if scene.mesh.file.is_empty() {
-        return Mesh::rectangle(
-            scene.geometry.length_x,
-            scene.geometry.length_y,
-            scene.mesh.elements_x,
-            scene.mesh.elements_y,
-            scene.mesh.grading,
+        return Mesh::graded_rectangle(
+            [scene.geometry.length_x, scene.geometry.length_y],
+            [scene.mesh.elements_x, scene.mesh.elements_y],
+            scene.mesh.axis_gradings(),
         )
         .map_err(|e| scene_error(scene, "mesh", e.to_string()));
     }

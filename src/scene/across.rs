@@ -17,7 +17,7 @@ use super::schema::{
 };
 use super::text::short_number;
 use std::f64::consts::PI;
-use wrinkle_runtime::fem::mesh::graded_breakpoints;
+use wrinkle_runtime::fem::mesh::{AxisGrading, RefinedEnds};
 
 /// Window (in the scene's units, N/mm and N·mm) of the membrane and bending stiffnesses: their
 /// squares and their products with lengths and wavenumbers to the fourth stay far inside the
@@ -278,22 +278,29 @@ fn check_mesh(scene: &Scene) -> Result<(), KeyError> {
             ),
         ));
     }
-    let sizes = |length: f64, count: usize| {
-        let breakpoints = graded_breakpoints(length, count, scene.mesh.grading);
+    check_grading_ends(scene)?;
+    let [grading_x, grading_y] = scene.mesh.axis_gradings();
+    let sizes = |length: f64, count: usize, grading: AxisGrading| {
+        let breakpoints = grading.breakpoints(length, count);
         let widths = breakpoints.windows(2).map(|pair| pair[1] - pair[0]);
         widths.fold((f64::INFINITY, 0.0f64), |(low, high), w| {
             (low.min(w), high.max(w))
         })
     };
-    let (shortest_x, longest_x) = sizes(scene.geometry.length_x, elements_x);
-    let (shortest_y, longest_y) = sizes(scene.geometry.length_y, elements_y);
+    let (shortest_x, longest_x) = sizes(scene.geometry.length_x, elements_x, grading_x);
+    let (shortest_y, longest_y) = sizes(scene.geometry.length_y, elements_y, grading_y);
     let along_x = longest_x / shortest_y;
     let along_y = longest_y / shortest_x;
     let aspect = along_x.max(along_y);
     if aspect <= MAX_ELEMENT_ASPECT_RATIO * (1.0 + 1e-12) {
         return Ok(());
     }
-    let key = if scene.mesh.grading > 1.0 && scene.was_given("mesh.grading") {
+    let given = |key: &str, ratio: f64| ratio > 1.0 && scene.was_given(key);
+    let key = if given("mesh.grading_x", grading_x.ratio) {
+        "mesh.grading_x"
+    } else if given("mesh.grading_y", grading_y.ratio) {
+        "mesh.grading_y"
+    } else if given("mesh.grading", scene.mesh.grading) {
         "mesh.grading"
     } else if along_x >= along_y {
         "mesh.nx"
@@ -308,10 +315,53 @@ fn check_mesh(scene: &Scene) -> Result<(), KeyError> {
             elements_y,
             short_number(scene.geometry.length_x),
             short_number(scene.geometry.length_y),
-            short_number(scene.mesh.grading),
+            grading_text(grading_x.ratio, grading_y.ratio),
             short_number(MAX_ELEMENT_ASPECT_RATIO)
         ),
     ))
+}
+
+/// `1.5`, or `1.5 along X, 3 along Y` when the axes differ.
+fn grading_text(along_x: f64, along_y: f64) -> String {
+    if along_x == along_y {
+        short_number(along_x)
+    } else {
+        format!(
+            "{} along X, {} along Y",
+            short_number(along_x),
+            short_number(along_y)
+        )
+    }
+}
+
+/// A grading above 1 along an axis that `mesh.refine_toward` does not refine (neither of its
+/// ends named) would be silently ignored: an error naming the grading key.
+fn check_grading_ends(scene: &Scene) -> Result<(), KeyError> {
+    let gradings = scene.mesh.axis_gradings();
+    let axes = [
+        ("mesh.grading_x", "X", "left", "right"),
+        ("mesh.grading_y", "Y", "bottom", "top"),
+    ];
+    for (grading, (key, axis, start, end)) in gradings.iter().zip(axes) {
+        if grading.ratio <= 1.0 || grading.ends != RefinedEnds::Neither {
+            continue;
+        }
+        let key = if scene.was_given(key) {
+            key
+        } else {
+            "mesh.grading"
+        };
+        return Err(KeyError::new(
+            key,
+            format!(
+                "grading {} along {axis}, but mesh.refine_toward = {:?} names neither `{start}` nor `{end}` (nor a corner on them): it would refine nothing along {axis}; name an end, or set mesh.grading_{} = 1",
+                short_number(grading.ratio),
+                scene.mesh.refine_toward,
+                axis.to_lowercase()
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// The tension strain $`N_Y/(Eh)`$ of the biaxial load at most [`MAX_TENSION_STRAIN`].

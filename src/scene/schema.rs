@@ -16,6 +16,7 @@ use super::kinds::{
 use std::collections::BTreeMap;
 use toml::Value;
 use wrinkle_models::REFERENCE_MODEL;
+use wrinkle_runtime::fem::mesh::{AxisGrading, RefinedEnds};
 
 /// Source name of a scene that was not read from a file.
 pub const BUILT_IN_SOURCE: &str = "<built-in default scene>";
@@ -44,6 +45,18 @@ pub const LENGTH_RANGE: (f64, f64) = (1e-6, 1e9);
 /// times longer than wide and never finished its wavenumber search), and a Q8 element that
 /// stretched approximates nothing.
 pub const MAX_ELEMENT_ASPECT_RATIO: f64 = 50.0;
+
+/// The edges and corners of the rectangle that `mesh.refine_toward` may name.
+pub const REFINE_TARGETS: &[&str] = &[
+    "left",
+    "right",
+    "bottom",
+    "top",
+    "bottom_left",
+    "bottom_right",
+    "top_left",
+    "top_right",
+];
 
 /// Largest `solver.max_steps`: each step costs at least one factorisation.
 pub const MAX_STEPS: usize = 10_000;
@@ -141,10 +154,27 @@ scene_schema! {
                   at most 50 times longer than wide (grading included)";
         /// elements along Y
         ny => elements_y: usize = 16, Count::between(1, MAX_ELEMENTS_PER_SIDE), Unit::NONE;
-        /// ratio of the largest to the smallest element size; the smallest elements are at the
-        /// edges (clamped-edge layers are thin)
+        /// ratio of the largest to the smallest element size along X and Y (geometric
+        /// sizes); the smallest elements are at the edges named by `refine_toward` (by default
+        /// every edge: clamped-edge layers are thin)
         grading => grading: f64 = 1.0, Float::at_least(1.0).at_most(MAX_ELEMENT_ASPECT_RATIO),
             Unit::NONE;
+        /// the grading along X alone, or `"auto"`: `grading`
+        grading_x => grading_x: AxisRatio = AxisRatio::Auto,
+            number_or_auto::<AxisRatio>(Float::at_least(1.0).at_most(MAX_ELEMENT_ASPECT_RATIO)),
+            Unit::NONE;
+        /// the grading along Y alone, or `"auto"`: `grading`
+        grading_y => grading_y: AxisRatio = AxisRatio::Auto,
+            number_or_auto::<AxisRatio>(Float::at_least(1.0).at_most(MAX_ELEMENT_ASPECT_RATIO)),
+            Unit::NONE;
+        /// edges and corners the smallest elements sit at: `left`, `right` refine X toward
+        /// $`X = 0`$, $`L_X`$, `bottom`, `top` refine Y toward $`Y = 0`$, $`L_Y`$, a corner
+        /// (`bottom_left` …) both of its edges (a structured mesh refines toward a corner through
+        /// its two edges: the smallest elements are at the corner); `"edges"`: all four. An axis
+        /// with neither end named is uniform
+        refine_toward => refine_toward: Vec<String> = vec!["edges".to_string()],
+            ChoiceList::new(REFINE_TARGETS, "edges", "edge and corner names"), Unit::NONE,
+            note "a grading along an axis with neither end named is an error";
         /// a Gmsh MSH 4.1 file (ASCII or binary) of 8-node quadrilaterals, relative to the
         /// scene file, whose physical groups name the boundaries; `""`: the structured
         /// rectangle of `geometry` with `nx`, `ny`, `grading` (which a file ignores)
@@ -429,6 +459,59 @@ scene_enum! {
         Uniform = "uniform",
         /// A load shaped like the first buckling mode, $`F = \varepsilon K_0\varphi`$.
         Mode = "mode",
+    }
+}
+
+/// The grading ratio along one axis (`mesh.grading_x`, `mesh.grading_y`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum AxisRatio {
+    /// `mesh.grading`.
+    Auto,
+    /// This ratio.
+    Fixed(f64),
+}
+
+impl AutoOrNumber for AxisRatio {
+    const AUTO: Self = AxisRatio::Auto;
+
+    fn fixed(number: f64) -> Self {
+        AxisRatio::Fixed(number)
+    }
+
+    fn number(self) -> Option<f64> {
+        match self {
+            AxisRatio::Auto => None,
+            AxisRatio::Fixed(number) => Some(number),
+        }
+    }
+}
+
+impl MeshSpec {
+    /// The structured rectangle's grading along X and Y: the ratio of `grading_x`,
+    /// `grading_y` (or `grading`) toward the ends `refine_toward` names.
+    pub fn axis_gradings(&self) -> [AxisGrading; 2] {
+        let named = |name: &str| {
+            self.refine_toward
+                .iter()
+                .any(|target| target == "edges" || target.split('_').any(|part| part == name))
+        };
+        let ends = |start: &str, end: &str| match (named(start), named(end)) {
+            (true, true) => RefinedEnds::Both,
+            (true, false) => RefinedEnds::Start,
+            (false, true) => RefinedEnds::End,
+            (false, false) => RefinedEnds::Neither,
+        };
+        let ratio = |axis: AxisRatio| axis.number().unwrap_or(self.grading);
+        [
+            AxisGrading {
+                ratio: ratio(self.grading_x),
+                ends: ends("left", "right"),
+            },
+            AxisGrading {
+                ratio: ratio(self.grading_y),
+                ends: ends("bottom", "top"),
+            },
+        ]
     }
 }
 

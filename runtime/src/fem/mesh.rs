@@ -13,6 +13,7 @@
 //! [`Mesh::boundary_nodes`].
 
 use super::element::{Element, ElementKind, with_element};
+use super::mesh_bins::ElementBins;
 use std::collections::BTreeMap;
 
 /// A mesh of elements of one kind with named boundary sets.
@@ -32,6 +33,8 @@ pub struct Mesh {
     /// Element boundaries of a structured mesh (`None` for a general mesh): point location
     /// is then a binary search per axis instead of a scan of the elements.
     pub grid: Option<StructuredGrid>,
+    /// The bins that locate points on a general mesh, built at its first [`Mesh::locate`].
+    pub(crate) bins: std::sync::OnceLock<ElementBins>,
 }
 
 /// The tensor-product layout of a mesh made by [`Mesh::rectangle`] (element `ey * nx + ex`
@@ -177,6 +180,79 @@ pub fn graded_breakpoints(length: f64, n: usize, grading: f64) -> Vec<f64> {
     x
 }
 
+/// Which ends of one axis of a structured mesh carry its smallest elements.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RefinedEnds {
+    /// Neither: the elements are uniform whatever the ratio.
+    Neither,
+    /// The start of the axis ($`X = 0`$ or $`Y = 0`$).
+    Start,
+    /// The end of the axis ($`X = L_X`$ or $`Y = L_Y`$).
+    End,
+    /// Both ends, symmetrically ([`graded_breakpoints`]).
+    Both,
+}
+
+/// The element sizes along one axis of a structured mesh: geometric, with `ratio` the largest
+/// size over the smallest and the smallest at `ends`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AxisGrading {
+    /// Largest over smallest element size ($`\ge 1`$; 1 = uniform).
+    pub ratio: f64,
+    /// Where the smallest elements sit.
+    pub ends: RefinedEnds,
+}
+
+impl AxisGrading {
+    /// Graded toward both ends by `ratio` (the grading of [`Mesh::rectangle`]).
+    pub fn symmetric(ratio: f64) -> Self {
+        AxisGrading {
+            ratio,
+            ends: RefinedEnds::Both,
+        }
+    }
+
+    /// Positions of the `n + 1` element boundaries on $`[0, L]`$, first 0 and last $`L`$
+    /// exactly. Toward both ends: [`graded_breakpoints`]. Toward one end: sizes
+    /// $`s_k \propto r^k`$ growing away from it, $`r = \text{ratio}^{1/(n-1)}`$. Toward neither:
+    /// uniform (the same numbers as [`graded_breakpoints`] with grading 1).
+    pub fn breakpoints(&self, length: f64, n: usize) -> Vec<f64> {
+        match self.ends {
+            RefinedEnds::Both => graded_breakpoints(length, n, self.ratio),
+            RefinedEnds::Neither => graded_breakpoints(length, n, 1.0),
+            RefinedEnds::Start => one_sided_breakpoints(length, n, self.ratio),
+            RefinedEnds::End => {
+                let start = one_sided_breakpoints(length, n, self.ratio);
+                let mut x: Vec<f64> = start.iter().rev().map(|s| length - s).collect();
+                x[0] = 0.0;
+                x[n] = length;
+                x
+            }
+        }
+    }
+}
+
+/// Breakpoints on $`[0, L]`$ with the sizes $`r^k`$ ($`k = 0 \dots n-1`$) growing from
+/// $`X = 0`$, $`r^{n-1}`$ = `grading` (uniform for `grading` $`\le 1`$ or one element).
+fn one_sided_breakpoints(length: f64, n: usize, grading: f64) -> Vec<f64> {
+    let ratio = if n <= 1 || grading <= 1.0 {
+        1.0
+    } else {
+        grading.powf(1.0 / (n - 1) as f64)
+    };
+    let sizes: Vec<f64> = (0..n).map(|k| ratio.powi(k as i32)).collect();
+    let total: f64 = sizes.iter().sum();
+    let mut x = Vec::with_capacity(n + 1);
+    let mut acc = 0.0;
+    x.push(0.0);
+    for s in &sizes {
+        acc += s / total * length;
+        x.push(acc);
+    }
+    x[n] = length;
+    x
+}
+
 /// Checks the sizes and grading of a structured generator.
 fn check_sizes(sizes: &[(&'static str, f64)], grading: f64) -> Result<(), MeshError> {
     for &(what, value) in sizes {
@@ -235,6 +311,7 @@ impl Mesh {
             edges: BTreeMap::new(),
             points: BTreeMap::new(),
             grid: None,
+            bins: std::sync::OnceLock::new(),
         })
     }
 
@@ -290,12 +367,27 @@ impl Mesh {
         ny: usize,
         grading: f64,
     ) -> Result<Mesh, MeshError> {
-        check_sizes(
-            &[("lx", lx), ("ly", ly), ("nx", nx as f64), ("ny", ny as f64)],
-            grading,
-        )?;
-        let xs = graded_breakpoints(lx, nx, grading);
-        let ys = graded_breakpoints(ly, ny, grading);
+        let both = AxisGrading::symmetric(grading);
+        Mesh::graded_rectangle([lx, ly], [nx, ny], [both, both])
+    }
+
+    /// [`Mesh::rectangle`] of `[0, lengths[0]] × [0, lengths[1]]` with `counts` elements along
+    /// X and Y and each axis graded on its own ([`AxisGrading::breakpoints`]): the smallest
+    /// elements toward the edges (or, with both axes, the corners) where the solution varies.
+    pub fn graded_rectangle(
+        lengths: [f64; 2],
+        counts: [usize; 2],
+        gradings: [AxisGrading; 2],
+    ) -> Result<Mesh, MeshError> {
+        let ([lx, ly], [nx, ny]) = (lengths, counts);
+        for grading in gradings {
+            check_sizes(
+                &[("lx", lx), ("ly", ly), ("nx", nx as f64), ("ny", ny as f64)],
+                grading.ratio,
+            )?;
+        }
+        let xs = gradings[0].breakpoints(lx, nx);
+        let ys = gradings[1].breakpoints(ly, ny);
         let (nodes, numbering) = NodeGrid::number(&xs, &ys);
         let mut mesh = Mesh::new(ElementKind::Quad8, nodes, numbering.connectivity())?;
         for (name, segments) in numbering.edges() {
@@ -545,23 +637,114 @@ mod tests {
     }
 
     #[test]
+    fn one_sided_grading_puts_the_smallest_elements_at_the_named_end() {
+        let sizes = |grading: AxisGrading| {
+            let x = grading.breakpoints(10.0, 6);
+            assert_eq!((x[0], x[6]), (0.0, 10.0));
+            x.windows(2).map(|w| w[1] - w[0]).collect::<Vec<f64>>()
+        };
+        let start = sizes(AxisGrading {
+            ratio: 5.0,
+            ends: RefinedEnds::Start,
+        });
+        assert!((start[5] / start[0] - 5.0).abs() < 1e-12, "{start:?}");
+        assert!(start.windows(2).all(|w| w[1] > w[0]));
+        let end = sizes(AxisGrading {
+            ratio: 5.0,
+            ends: RefinedEnds::End,
+        });
+        assert!((end[0] / end[5] - 5.0).abs() < 1e-12, "{end:?}");
+        let neither = AxisGrading {
+            ratio: 5.0,
+            ends: RefinedEnds::Neither,
+        };
+        assert_eq!(neither.breakpoints(10.0, 6), graded_breakpoints(10.0, 6, 1.0));
+        assert_eq!(
+            AxisGrading::symmetric(3.0).breakpoints(10.0, 7),
+            graded_breakpoints(10.0, 7, 3.0)
+        );
+    }
+
+    #[test]
+    fn a_rectangle_graded_per_axis_keeps_its_edges_and_the_plain_one_is_unchanged() {
+        let x = AxisGrading {
+            ratio: 4.0,
+            ends: RefinedEnds::End,
+        };
+        let mesh =
+            Mesh::graded_rectangle([4.0, 2.0], [4, 3], [x, AxisGrading::symmetric(2.0)]).unwrap();
+        let grid = mesh.grid.as_ref().unwrap();
+        assert!(grid.xs[4] - grid.xs[3] < grid.xs[1] - grid.xs[0]);
+        for &n in &mesh.boundary_nodes("right").unwrap() {
+            assert_eq!(mesh.nodes[n][0], 4.0);
+        }
+        let plain = Mesh::rectangle(4.0, 2.0, 4, 3, 2.0).unwrap();
+        let same = AxisGrading::symmetric(2.0);
+        let general = Mesh::graded_rectangle([4.0, 2.0], [4, 3], [same, same]).unwrap();
+        assert_eq!(plain.nodes, general.nodes);
+        assert_eq!(plain.connectivity, general.connectivity);
+    }
+
+    #[test]
+    fn the_outline_of_a_rectangle_is_its_four_edges() {
+        let mesh = Mesh::rectangle(4.0, 2.0, 4, 3, 1.0).unwrap();
+        let outline = mesh.outline();
+        assert_eq!(outline.len(), 2 * (4 + 3));
+        let mut edges: Vec<[usize; 3]> = mesh.edges.values().flatten().copied().collect();
+        let sorted = |segments: &mut Vec<[usize; 3]>| {
+            for s in segments.iter_mut() {
+                s[..2].sort_unstable();
+            }
+            segments.sort_unstable();
+        };
+        let mut outline = outline;
+        sorted(&mut outline);
+        sorted(&mut edges);
+        assert_eq!(outline, edges);
+    }
+
+    #[test]
     fn invalid_sizes_are_errors() {
         assert!(Mesh::rectangle(-1.0, 1.0, 2, 2, 1.0).is_err());
         assert!(Mesh::rectangle(1.0, 1.0, 0, 2, 1.0).is_err());
         assert!(Mesh::rectangle(1.0, 1.0, 2, 2, 0.5).is_err());
+        let nan = AxisGrading::symmetric(f64::NAN);
+        let fine = AxisGrading::symmetric(1.0);
+        assert!(Mesh::graded_rectangle([1.0, 1.0], [2, 2], [fine, nan]).is_err());
     }
 }
 
 impl Mesh {
     /// The element containing `point` and its reference coordinates. On a structured mesh, a
-    /// binary search per axis ($`O(\log n)`$); otherwise a scan of the elements, each inverting
-    /// its map ([`Element::reference_of`]). `None` outside the mesh (a line mesh: off the
-    /// segment or off the axis).
+    /// binary search per axis ($`O(\log n)`$); otherwise the first element, in element order,
+    /// among those whose box holds the point ([`ElementBins`], built once), whose map's inverse
+    /// ([`Element::reference_of`]) puts it in its reference domain — the element
+    /// [`Self::locate_by_scan`] finds. `None` outside the mesh (a line mesh: off the segment or
+    /// off the axis; a plane mesh: outside its outline or in a hole).
     pub fn locate(&self, point: [f64; 2]) -> Option<(usize, [f64; 2])> {
         match &self.grid {
             Some(grid) => grid.locate(point),
-            None => self.locate_by_scan(point),
+            None => {
+                let bins = self.bins.get_or_init(|| ElementBins::new(self));
+                let candidates = bins.candidates(point);
+                with_element!(self.kind, E => self.locate_among::<E>(candidates, point))
+            }
         }
+    }
+
+    /// Whether `point` lies in the domain (in an element or on its boundary).
+    pub fn contains(&self, point: [f64; 2]) -> bool {
+        self.locate(point).is_some()
+    }
+
+    fn locate_among<E: Element>(
+        &self,
+        candidates: &[usize],
+        point: [f64; 2],
+    ) -> Option<(usize, [f64; 2])> {
+        candidates.iter().find_map(|&e| {
+            E::reference_of(&self.element_coordinates(e), point).map(|reference| (e, reference))
+        })
     }
 
     /// [`Self::locate`] for a general mesh: the first element, in element order, whose map's
@@ -614,6 +797,45 @@ impl Mesh {
                 weight * values[(node * field_count + field) * E::COMPONENTS + component]
             })
             .sum()
+    }
+
+    /// Extent of element `e` along the unit vector `direction`:
+    /// $`\max_a \mathbf x_a\cdot\mathbf e - \min_a \mathbf x_a\cdot\mathbf e`$ over its nodes
+    /// (an affine rectangle's width along an axis is exactly its side).
+    pub fn element_extent_along(&self, e: usize, direction: [f64; 2]) -> f64 {
+        let (low, high) = self.element_nodes(e).iter().fold(
+            (f64::INFINITY, f64::NEG_INFINITY),
+            |(low, high), &n| {
+                let [x, y] = self.nodes[n];
+                let along = x * direction[0] + y * direction[1];
+                (low.min(along), high.max(along))
+            },
+        );
+        high - low
+    }
+
+    /// The outline of a Q8 mesh: the sides that belong to one element only (outer outline
+    /// and the rims of holes), as segments `[end, end, middle]` in element order; empty for
+    /// other elements.
+    pub fn outline(&self) -> Vec<[usize; 3]> {
+        if self.kind != ElementKind::Quad8 {
+            return Vec::new();
+        }
+        let sides = |e: usize| {
+            let n = self.element_nodes(e);
+            [(0, 1, 4), (1, 2, 5), (2, 3, 6), (3, 0, 7)].map(|(a, b, m)| [n[a], n[b], n[m]])
+        };
+        let key = |[a, b, _]: [usize; 3]| (a.min(b), a.max(b));
+        let mut uses: BTreeMap<(usize, usize), usize> = BTreeMap::new();
+        for e in 0..self.element_count() {
+            for side in sides(e) {
+                *uses.entry(key(side)).or_default() += 1;
+            }
+        }
+        (0..self.element_count())
+            .flat_map(sides)
+            .filter(|&side| uses[&key(side)] == 1)
+            .collect()
     }
 
     /// Bounding box `[x0, x1, y0, y1]`.

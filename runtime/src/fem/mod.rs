@@ -8,6 +8,7 @@ pub mod element;
 pub mod gmsh;
 pub mod loads;
 pub mod mesh;
+pub mod mesh_bins;
 pub mod parameter_profile;
 
 pub use assembly::{Assembler, Parallelism, TaylorTape};
