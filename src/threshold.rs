@@ -71,7 +71,7 @@ use crate::scene::{Direction, LoadKind, PathMethod, Scene, Wavenumber};
 use crate::setup::{build_problem, configure_model, layout_of, unknown_model};
 use std::f64::consts::PI;
 use steps::ThresholdSteps;
-use validity::{validity_warnings, well_posedness_beyond};
+use validity::{ModeOnMesh, validity_warnings, well_posedness_beyond};
 use wrinkle_models::{ModelVisitor, with_model};
 use wrinkle_runtime::EnergyModel;
 use wrinkle_runtime::linear::factor::SparseFactorization;
@@ -186,7 +186,8 @@ fn threshold_checks<M: EnergyModel>(
     layout: &Layout,
     threshold: &Threshold,
 ) -> Vec<ValidityWarning> {
-    let mut warnings = validity_warnings(scene, layout, threshold);
+    let mode = mode_on_mesh(problem, layout, &threshold.buckling);
+    let mut warnings = validity_warnings(scene, layout, threshold, &mode);
     warnings.extend(well_posedness_beyond(
         problem,
         &threshold.buckling,
@@ -226,6 +227,23 @@ fn require_free_primary_dofs<M: EnergyModel>(
 pub fn analyse<M: EnergyModel>(problem: &Problem<M>) -> Result<SparseFactorization, Error> {
     SparseFactorization::analyze(problem.assembler.pattern())
         .map_err(|e| Error::Solver(format!("symbolic analysis of the tangent: {e}")))
+}
+
+/// The primary field of the first buckling mode at the nodes, for the mode-resolution check.
+fn mode_on_mesh<'a, M: EnergyModel>(
+    problem: &'a Problem<M>,
+    layout: &Layout,
+    buckling: &LinearBuckling,
+) -> ModeOnMesh<'a> {
+    let mesh = problem.assembler.mesh();
+    let nodal = buckling.modes.first().map_or_else(Vec::new, |mode| {
+        let values = problem.dofs().expand_increment(mode, 0.0);
+        values
+            .chunks_exact(layout.field_count)
+            .map(|node| node[layout.primary])
+            .collect()
+    });
+    ModeOnMesh { mesh, nodal }
 }
 
 /// The plate's wavelength, read from its first mode along the line through the mode's largest

@@ -5,6 +5,7 @@ use super::result::{Threshold, ValidityWarning};
 use crate::physics::Layout;
 use crate::scene::Scene;
 use wrinkle_runtime::EnergyModel;
+use wrinkle_runtime::fem::Mesh;
 use wrinkle_runtime::problem::Problem;
 use wrinkle_runtime::solve::buckling::LinearBuckling;
 
@@ -61,6 +62,7 @@ pub(super) fn validity_warnings(
     scene: &Scene,
     layout: &Layout,
     threshold: &Threshold,
+    mode: &ModeOnMesh,
 ) -> Vec<ValidityWarning> {
     let mut warnings = Vec::new();
     let h = scene.material.thickness;
@@ -94,26 +96,79 @@ pub(super) fn validity_warnings(
         });
     }
     if let (Some(l), false) = (threshold.wavelength, layout.is_envelope()) {
-        // Element size along the wave direction (X, or Y for waves along Y as in the strip).
-        let theta = threshold.direction_degrees.to_radians();
-        let (element, axis) = if theta.sin().abs() > theta.cos().abs() {
-            (scene.geometry.length_y / scene.mesh.elements_y as f64, "Y")
-        } else {
-            (scene.geometry.length_x / scene.mesh.elements_x as f64, "X")
-        };
-        let per_wavelength = l / element;
-        if per_wavelength < MIN_ELEMENTS_PER_WAVELENGTH {
-            warnings.push(ValidityWarning {
-                check: "mode_resolution",
-                message: format!(
-                    "{} elements per wavelength ({l:.4e} mm) along {axis}: the plate's mode is not resolved (at least {MIN_ELEMENTS_PER_WAVELENGTH}; refine mesh.n{})",
-                    below_limit_text(per_wavelength),
-                    axis.to_lowercase()
-                ),
-            });
-        }
+        warnings.extend(mode_resolution(scene, threshold, mode, l));
     }
     warnings
+}
+
+/// The mode-resolution check of a model that resolves its waves on the mesh: the wavelength
+/// `l` over the element size along the wave direction $`\mathbf e`$, measured on the elements
+/// themselves — the largest extent along $`\mathbf e`$ of the elements where the mode is at
+/// least [`MODE_SUPPORT_FRACTION`] of its peak (a graded or a file mesh is judged where its
+/// wrinkles are, not by $`L/n`$).
+fn mode_resolution(
+    scene: &Scene,
+    threshold: &Threshold,
+    mode: &ModeOnMesh,
+    l: f64,
+) -> Option<ValidityWarning> {
+    let theta = threshold.direction_degrees.to_radians();
+    let (cos, sin) = (theta.cos(), theta.sin());
+    let element = mode.element_size_along([cos, sin]);
+    let per_wavelength = l / element;
+    if per_wavelength >= MIN_ELEMENTS_PER_WAVELENGTH {
+        return None;
+    }
+    let (along, refine) = if !scene.mesh.file.is_empty() {
+        (
+            format!(
+                "along the wave direction ({}° from X)",
+                threshold.direction_degrees
+            ),
+            format!("refine the mesh file `{}`", scene.mesh.file),
+        )
+    } else if sin.abs() > cos.abs() {
+        ("along Y".to_string(), "refine mesh.ny".to_string())
+    } else {
+        ("along X".to_string(), "refine mesh.nx".to_string())
+    };
+    Some(ValidityWarning {
+        check: "mode_resolution",
+        message: format!(
+            "{} elements per wavelength ({l:.4e} mm) {along}: the plate's mode is not resolved (at least {MIN_ELEMENTS_PER_WAVELENGTH}; {refine})",
+            below_limit_text(per_wavelength),
+        ),
+    })
+}
+
+/// Elements whose largest nodal $`|w|`$ of the mode is at least this fraction of the mode's
+/// peak carry the mode, for [`mode_resolution`].
+pub const MODE_SUPPORT_FRACTION: f64 = 0.1;
+
+/// A buckling mode on its mesh: the nodal values of the primary (deflection) field.
+pub(super) struct ModeOnMesh<'a> {
+    /// The mesh.
+    pub mesh: &'a Mesh,
+    /// The mode's primary field at each node (empty: no mode; every element counts).
+    pub nodal: Vec<f64>,
+}
+
+impl ModeOnMesh<'_> {
+    /// The largest extent along `direction` of the elements that carry the mode
+    /// ([`MODE_SUPPORT_FRACTION`]); of every element when there is no mode.
+    fn element_size_along(&self, direction: [f64; 2]) -> f64 {
+        let peak = self.nodal.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let carries = |e: usize| {
+            peak == 0.0
+                || self.mesh.element_nodes(e).iter().any(|&n| {
+                    self.nodal.get(n).is_some_and(|v| v.abs() >= MODE_SUPPORT_FRACTION * peak)
+                })
+        };
+        (0..self.mesh.element_count())
+            .filter(|&e| carries(e))
+            .map(|e| self.mesh.element_extent_along(e, direction))
+            .fold(0.0, f64::max)
+    }
 }
 
 #[cfg(test)]
