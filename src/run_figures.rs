@@ -1,15 +1,52 @@
 //! Figures of a run besides the response, the profiles and the whole-domain wrinkle map (those
 //! are in [`crate::run_outputs`]): zooms of the wrinkle map on the wrinkled zones of a long
-//! domain (the strip's map is a thin ribbon), and the pre-buckling membrane forces
-//! $`N_X, N_Y`$ that explain where the sheet wrinkles.
+//! domain (the strip's map is a thin ribbon), the pre-buckling membrane forces
+//! $`N_X, N_Y`$ that explain where the sheet wrinkles, and the profiles along the user's line
+//! (`output.profile_line`: CSV and plot).
+//!
+//! On a domain that is not the rectangle of its bounding box (a mesh file with a hole or a
+//! curved outline) every map is masked: samples outside the mesh are NaN, drawn white, and the
+//! mesh's outline is drawn over the field ([`domain_sampler`], [`map_outline`]).
 //!
 //! Like every writer, nothing here recomputes a result: the states and their stress resultants
 //! come from the [`Trace`]; the figures only sample and draw them.
 
 use crate::error::{Error, io_error};
-use crate::output::{GridField, Quantity, WrinkleMap, plot_wrinkle_map};
+use crate::output::{
+    GridField, Profile, ProfilePlot, Quantity, WrinkleMap, plot_profiles, plot_wrinkle_map,
+    write_bytes_atomically,
+};
 use crate::results::{RunContext, Snap, Trace};
 use std::path::{Path, PathBuf};
+use wrinkle_runtime::fem::Mesh;
+
+/// `value(X, Y)` inside the mesh, NaN outside it (a hole, beyond a curved outline). A
+/// structured rectangle fills its bounding box: `value` everywhere, as before masking existed.
+pub fn domain_sampler<'a>(
+    mesh: &'a Mesh,
+    value: impl Fn(f64, f64) -> f64 + 'a,
+) -> impl Fn(f64, f64) -> f64 + 'a {
+    move |x, y| {
+        if mesh.grid.is_some() || mesh.contains([x, y]) {
+            value(x, y)
+        } else {
+            f64::NAN
+        }
+    }
+}
+
+/// The outline a map draws over its field: the mesh's boundary sides (outer outline and
+/// holes) for a mesh that is not a structured rectangle, none for one (its frame is the
+/// outline).
+pub fn map_outline(mesh: &Mesh) -> Vec<[[f64; 2]; 3]> {
+    if mesh.grid.is_some() {
+        return Vec::new();
+    }
+    mesh.outline()
+        .into_iter()
+        .map(|side| side.map(|node| mesh.nodes[node]))
+        .collect()
+}
 
 /// Zones whose largest $`|w|`$ across the domain exceeds this fraction of the peak are wrinkled.
 const ZONE_FRACTION: f64 = 0.1;
@@ -29,7 +66,134 @@ pub fn write_extra_figures(
 ) -> Result<Vec<(Vec<PathBuf>, String)>, Error> {
     let mut figures = write_zone_zooms(context, trace, dir)?;
     figures.extend(write_membrane_forces(context, trace, dir)?);
+    figures.extend(plot_profile_line(context, trace, dir)?);
     Ok(figures)
+}
+
+/// The samples of `output.profile_line` (none if the scene gives no line): arc length $`s`$
+/// from the first end and the point, about 16 per wavelength (400 to 4000).
+fn profile_line_points(context: &RunContext) -> Vec<(f64, [f64; 2])> {
+    let &[x0, y0, x1, y1] = context.scene.output.profile_line.as_slice() else {
+        return Vec::new();
+    };
+    let length = (x1 - x0).hypot(y1 - y0);
+    let wavelength = context.threshold.wavelength.unwrap_or(length);
+    let count = (16.0 * length / wavelength).clamp(400.0, 4000.0) as usize;
+    (0..=count)
+        .map(|k| {
+            let t = k as f64 / count as f64;
+            (t * length, [x0 + t * (x1 - x0), y0 + t * (y1 - y0)])
+        })
+        .collect()
+}
+
+/// The physical deflection $`w/h`$ of `snap` at each point of the line, NaN outside the
+/// domain; with `amplitude`, an envelope model's amplitude $`2|w_\text{env}|/h`$ instead
+/// (`None` for a plate).
+fn along_line(
+    context: &RunContext,
+    snap: &Snap,
+    points: &[(f64, [f64; 2])],
+    amplitude: bool,
+) -> Option<Vec<f64>> {
+    let snapshot = context.snapshot(&snap.values);
+    let h = context.scene.material.thickness;
+    let value = |point: [f64; 2]| {
+        if amplitude {
+            snapshot.envelope_amplitude(point).map(|a| a / h)
+        } else {
+            Some(snapshot.deflection(point) / h)
+        }
+    };
+    points
+        .iter()
+        .map(|&(_, point)| {
+            if context.mesh.contains(point) {
+                value(point)
+            } else {
+                Some(f64::NAN)
+            }
+        })
+        .collect()
+}
+
+/// `profile_line.csv`: columns `s_mm`, `x_mm`, `y_mm`, then for each profile load `L` (the
+/// loads of the profile plots) `w_over_h_at_L` and, for an envelope model,
+/// `amplitude_over_h_at_L`; an empty cell outside the domain. `None` without a line.
+pub fn write_profile_line_csv(
+    context: &RunContext,
+    trace: &Trace,
+    dir: &Path,
+) -> Result<Option<PathBuf>, Error> {
+    let points = profile_line_points(context);
+    if points.is_empty() {
+        return Ok(None);
+    }
+    let load = context.load_quantity();
+    let mut header = vec!["s_mm".to_string(), "x_mm".into(), "y_mm".into()];
+    let mut columns: Vec<Vec<f64>> = Vec::new();
+    for snap in &trace.profiles {
+        let at = load.format_value(snap.load).replace(' ', "");
+        for (name, amplitude) in [("w_over_h", false), ("amplitude_over_h", true)] {
+            if let Some(values) = along_line(context, snap, &points, amplitude) {
+                header.push(format!("{name}_at_{at}"));
+                columns.push(values);
+            }
+        }
+    }
+    let cell = |v: f64| if v.is_nan() { String::new() } else { format!("{v}") };
+    let mut text = header.join(",") + "\n";
+    for (row, &(s, [x, y])) in points.iter().enumerate() {
+        let mut cells = vec![format!("{s}"), format!("{x}"), format!("{y}")];
+        cells.extend(columns.iter().map(|column| cell(column[row])));
+        text += &(cells.join(",") + "\n");
+    }
+    let path = dir.join("profile_line.csv");
+    write_bytes_atomically(&path, text.as_bytes()).map_err(io_error(&path))?;
+    Ok(Some(path))
+}
+
+/// `profile_line.png|svg`: the physical deflection $`w/h`$ along the line at each profile
+/// load, broken where the line leaves the domain.
+fn plot_profile_line(
+    context: &RunContext,
+    trace: &Trace,
+    dir: &Path,
+) -> Result<Option<(Vec<PathBuf>, String)>, Error> {
+    let points = profile_line_points(context);
+    if points.is_empty() || trace.profiles.is_empty() {
+        return Ok(None);
+    }
+    let load = context.load_quantity();
+    let profiles = trace
+        .profiles
+        .iter()
+        .filter_map(|snap| {
+            let values = along_line(context, snap, &points, false)?;
+            Some(Profile {
+                label: format!("λ = {}", load.format_value(snap.load)),
+                points: points.iter().map(|p| p.0).zip(values).collect(),
+            })
+        })
+        .collect();
+    let line = &context.scene.output.profile_line;
+    let location = format!(
+        "along the line from ({}, {}) to ({}, {}) mm (output.profile_line); s from the first end",
+        line[0], line[1], line[2], line[3]
+    );
+    let stem = dir.join("profile_line");
+    let plot = plot_profiles(
+        &stem,
+        &format!("{}: physical deflection w / h", context.spec.name),
+        &ProfilePlot {
+            abscissa: Quantity::coordinate("s"),
+            ordinate: Quantity::new("deflection", "w / h", ""),
+            location: location.clone(),
+            profiles,
+        },
+    )
+    .map_err(io_error(&stem))?;
+    Ok(Some((plot.files, format!("Profiles {location}"))))
 }
 
 /// The intervals along `axis` (0: X, 1: Y) where the largest $`|v|`$ across the other axis
@@ -110,9 +274,13 @@ fn write_zone_zooms(
     } else {
         (41, samples)
     };
-    let overview = GridField::sample(Quantity::deflection(), bounds, columns, rows, |x, y| {
-        snapshot.deflection([x, y])
-    });
+    let overview = GridField::sample(
+        Quantity::deflection(),
+        bounds,
+        columns,
+        rows,
+        domain_sampler(context.mesh, |x, y| snapshot.deflection([x, y])),
+    );
     let h = context.scene.material.thickness;
     if overview.max_abs() < 1e-2 * h {
         return Ok(Vec::new());
@@ -133,7 +301,7 @@ fn write_zone_zooms(
             zone,
             count(zone[1] - zone[0]),
             count(zone[3] - zone[2]),
-            |x, y| snapshot.deflection([x, y]),
+            domain_sampler(context.mesh, |x, y| snapshot.deflection([x, y])),
         );
         let name = ["X", "Y"][axis];
         let title = format!(
@@ -143,7 +311,9 @@ fn write_zone_zooms(
             zones.len()
         );
         let stem = dir.join(format!("wrinkles_zone_{}", index + 1));
-        let map = WrinkleMap::new(field, 1e-2 * h, "10⁻² h").with_peak(snapshot.max_deflection());
+        let map = WrinkleMap::new(field, 1e-2 * h, "10⁻² h")
+            .with_peak(snapshot.max_deflection())
+            .with_outline(map_outline(context.mesh));
         let plot = plot_wrinkle_map(&stem, &title, &map).map_err(io_error(&stem))?;
         figures.push((
             plot.files,
@@ -184,10 +354,10 @@ fn write_membrane_forces(
             continue;
         };
         let quantity = Quantity::new("membrane force", name, "N/mm");
-        let field = GridField::sample(quantity, bounds, columns, rows, |x, y| {
-            mesh.locate([x, y])
-                .and_then(|(element, _)| values.get(element).copied())
-                .unwrap_or(0.0)
+        let field = GridField::sample(quantity, bounds, columns, rows, |x, y| match mesh.locate([x, y]) {
+            Some((element, _)) => values.get(element).copied().unwrap_or(0.0),
+            None if mesh.grid.is_some() => 0.0,
+            None => f64::NAN,
         });
         let stem = dir.join(format!("membrane_force_{name}"));
         let title = format!(
@@ -217,7 +387,8 @@ fn write_membrane_forces(
         );
         let map = WrinkleMap::new(field, 0.0, "")
             .with_peak(limit)
-            .with_caption(caption);
+            .with_caption(caption)
+            .with_outline(map_outline(mesh));
         let plot = plot_wrinkle_map(&stem, &title, &map).map_err(io_error(&stem))?;
         figures.push((
             plot.files,

@@ -73,6 +73,9 @@ pub fn write_run(
     files.extend(fields?);
     let figures = figures?;
     files.extend(figures.iter().flat_map(|(f, _)| f.clone()));
+    files.extend(crate::run_figures::write_profile_line_csv(
+        context, trace, &dir,
+    )?);
     let scene_path = dir.join("scene.toml");
     crate::output::write_bytes_atomically(&scene_path, context.scene.to_toml_string().as_bytes())
         .map_err(io_error(&scene_path))?;
@@ -335,13 +338,20 @@ fn write_wrinkle_map(
 ) -> Result<(Vec<PathBuf>, String), Error> {
     let bounds = context.mesh.bounds();
     let snapshot = context.snapshot(&trace.last.values);
+    // A masked map (a mesh file: holes, curved outlines) needs samples finer than its waves
+    // to draw its outline without steps: at least 400 along each side.
+    let least = if context.mesh.grid.is_some() { 0 } else { 400 };
     let (mx, my) = (
-        samples(context, bounds[1] - bounds[0]).min(900),
-        samples(context, bounds[3] - bounds[2]).min(450),
+        samples(context, bounds[1] - bounds[0]).max(least).min(900),
+        samples(context, bounds[3] - bounds[2]).max(least).min(450),
     );
-    let field = GridField::sample(Quantity::deflection(), bounds, mx + 1, my + 1, |x, y| {
-        snapshot.deflection([x, y])
-    });
+    let field = GridField::sample(
+        Quantity::deflection(),
+        bounds,
+        mx + 1,
+        my + 1,
+        crate::run_figures::domain_sampler(context.mesh, |x, y| snapshot.deflection([x, y])),
+    );
     let h = context.scene.material.thickness;
     let stem = dir.join("wrinkles");
     let plot = plot_wrinkle_map(
@@ -352,7 +362,8 @@ fn write_wrinkle_map(
             context.load_quantity().format_value(trace.last.load)
         ),
         &crate::output::WrinkleMap::new(field, 1e-2 * h, "10⁻² h")
-            .with_peak(snapshot.max_deflection()),
+            .with_peak(snapshot.max_deflection())
+            .with_outline(crate::run_figures::map_outline(context.mesh)),
     )
     .map_err(io_error(&stem))?;
     Ok((
@@ -431,7 +442,9 @@ fn profiles_along(
         .iter()
         .map(|snap| {
             let snapshot = context.snapshot(&snap.values);
+            // NaN (a gap in the line) where the line crosses a hole or leaves the outline.
             let value = |p: [f64; 2]| match snapshot.envelope_amplitude(p) {
+                _ if context.mesh.grid.is_none() && !context.mesh.contains(p) => f64::NAN,
                 Some(a) => a / h,
                 None => snapshot.deflection(p) / h,
             };

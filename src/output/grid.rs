@@ -86,7 +86,10 @@ impl GridField {
     }
 
     /// Bilinear interpolation at normalised coordinates $`(s, t) \in [0, 1]^2`$ of the
-    /// rectangle.
+    /// rectangle. A sample that is NaN marks a point outside the domain (a hole, or beyond a
+    /// curved outline): where the nearest of the four samples is NaN the result is NaN; where
+    /// only others are, the finite ones are weighted alone (their bilinear weights rescaled to
+    /// sum to 1), so that the domain's edge is not eaten by a cell's width.
     pub(crate) fn interpolate_normalised(&self, s: f64, t: f64) -> f64 {
         let u = s.clamp(0.0, 1.0) * (self.columns - 1) as f64;
         let v = t.clamp(0.0, 1.0) * (self.rows - 1) as f64;
@@ -96,8 +99,27 @@ impl GridField {
         );
         let (a, b) = (u - i as f64, v - j as f64);
         let at = |i: usize, j: usize| self.values[j * self.columns + i];
-        (1.0 - b) * ((1.0 - a) * at(i, j) + a * at(i + 1, j))
-            + b * ((1.0 - a) * at(i, j + 1) + a * at(i + 1, j + 1))
+        let corners = [
+            (at(i, j), (1.0 - a) * (1.0 - b)),
+            (at(i + 1, j), a * (1.0 - b)),
+            (at(i, j + 1), (1.0 - a) * b),
+            (at(i + 1, j + 1), a * b),
+        ];
+        if corners.iter().all(|(value, _)| !value.is_nan()) {
+            return (1.0 - b) * ((1.0 - a) * at(i, j) + a * at(i + 1, j))
+                + b * ((1.0 - a) * at(i, j + 1) + a * at(i + 1, j + 1));
+        }
+        let nearest = at(i + usize::from(a > 0.5), j + usize::from(b > 0.5));
+        if nearest.is_nan() {
+            return f64::NAN;
+        }
+        let (sum, weight) = corners
+            .iter()
+            .filter(|(value, _)| !value.is_nan())
+            .fold((0.0, 0.0), |(sum, weight), (value, w)| {
+                (sum + w * value, weight + w)
+            });
+        if weight > 0.0 { sum / weight } else { nearest }
     }
 
     /// Checks the invariants (bounds, at least 2 × 2 points, length of `values`).
@@ -139,5 +161,23 @@ mod tests {
         assert_eq!(field.point(2, 1), [2.0, 1.0]);
         assert!((field.interpolate_normalised(0.25, 0.5) - 5.5).abs() < 1e-12);
         assert_eq!(field.max_abs_point(), Some((2, 1, 12.0)));
+    }
+
+    /// NaN marks points outside the domain: blank where the nearest sample is outside, the
+    /// finite samples alone beside it.
+    #[test]
+    fn samples_outside_the_domain_stay_blank_and_do_not_leak() {
+        let field = GridField::sample(
+            Quantity::deflection(),
+            [0.0, 1.0, 0.0, 1.0],
+            2,
+            2,
+            |x, y| if x > 0.5 && y > 0.5 { f64::NAN } else { 1.0 + x },
+        );
+        assert!(field.interpolate_normalised(0.9, 0.9).is_nan());
+        let near_left = field.interpolate_normalised(0.1, 0.6);
+        assert!((near_left - 1.1 / 1.0).abs() < 0.2, "{near_left}");
+        assert!(near_left.is_finite());
+        assert_eq!(field.max_abs(), 2.0);
     }
 }

@@ -46,7 +46,8 @@ pub(super) fn check_across_keys(scene: &Scene) -> Result<(), KeyError> {
     check_domain(scene)?;
     check_tension(scene)?;
     check_imperfection(scene)?;
-    check_vtu_loads(scene)
+    check_vtu_loads(scene)?;
+    check_profile_line(scene)
 }
 
 /// One factor of a derived product: the key it comes from and its base-10 logarithm, now and
@@ -434,6 +435,24 @@ fn check_imperfection(scene: &Scene) -> Result<(), KeyError> {
             short_number(perturbation)
         ),
     ))
+}
+
+/// `output.profile_line`: none, or two distinct end points.
+fn check_profile_line(scene: &Scene) -> Result<(), KeyError> {
+    let line = &scene.output.profile_line;
+    let message = match line.len() {
+        0 => return Ok(()),
+        4 if line[0] == line[2] && line[1] == line[3] => format!(
+            "both ends are ({}, {}) mm: a line needs two distinct end points",
+            short_number(line[0]),
+            short_number(line[1])
+        ),
+        4 => return Ok(()),
+        count => format!(
+            "{count} numbers given; a line is [X0, Y0, X1, Y1] (mm), 4 numbers, or [] for none"
+        ),
+    };
+    Err(KeyError::new("output.profile_line", message))
 }
 
 /// At most [`MAX_VTU_LOADS`] loads, no two equal (they would write one file).

@@ -286,6 +286,13 @@ scene_schema! {
             note "at most 100 loads, no two equal";
         /// draw plots (PNG and SVG, embedded in `report.html`)
         plots => plots: bool = true, Flag, Unit::NONE;
+        /// a line `[X0, Y0, X1, Y1]` (mm) to sample the wrinkles along, from $`(X_0, Y_0)`$
+        /// to $`(X_1, Y_1)`$: `profile_line.csv` (the physical deflection, and an envelope
+        /// model's amplitude, at each profile load; empty cells outside the domain) and, with
+        /// `plots`, `profile_line.png|svg`; `[]`: none
+        profile_line => profile_line: Vec<f64> = Vec::new(),
+            FloatList::of(Float::finite()), Unit::MM,
+            note "empty or 4 numbers, the two ends distinct";
         /// write the nodal fields (`fields_final.vtu`, `fields_load_L.vtu`) with the stress
         /// resultants
         vtu => vtu: bool = true, Flag, Unit::NONE;

@@ -37,6 +37,10 @@ pub struct WrinkleMap {
     /// The note under the title when the caller words it (e.g. for a field that is not a
     /// deflection); `None`: [`WrinkleMap::note`] writes the largest value and the threshold.
     pub caption: Option<String>,
+    /// The domain's boundary as quadratic segments `[end, end, middle]` (mm), drawn over the
+    /// field when the domain is not the rectangle of the axes (a hole, a curved outline;
+    /// samples outside it are NaN and left white). Empty: only the frame.
+    pub outline: Vec<[[f64; 2]; 3]>,
 }
 
 impl WrinkleMap {
@@ -50,7 +54,14 @@ impl WrinkleMap {
             y_axis: Quantity::coordinate("Y"),
             peak: None,
             caption: None,
+            outline: Vec::new(),
         }
+    }
+
+    /// The same map with the domain's boundary drawn ([`WrinkleMap::outline`]).
+    pub fn with_outline(mut self, outline: Vec<[[f64; 2]; 3]>) -> Self {
+        self.outline = outline;
+        self
     }
 
     /// The same map with the note under the title worded by the caller.
@@ -294,6 +305,16 @@ impl MapFigure<'_> {
             vec![(x0, y0), (x1, y0), (x1, y1), (x0, y1), (x0, y0)],
             scale.stroke(FRAME_COLOR, 1.2),
         )))?;
+        // Each quadratic boundary segment as 8 chords of its parabola.
+        chart.draw_series(self.map.outline.iter().map(|&[a, b, m]| {
+            let along = |s: f64| {
+                let (na, nb, nm) = (0.5 * s * (s - 1.0), 0.5 * s * (s + 1.0), 1.0 - s * s);
+                let point = |k: usize| na * a[k] + nb * b[k] + nm * m[k];
+                (point(0), point(1))
+            };
+            let points: Vec<(f64, f64)> = (0..=8).map(|k| along(-1.0 + 0.25 * k as f64)).collect();
+            PathElement::new(points, scale.stroke(FRAME_COLOR, 1.0))
+        }))?;
         Ok(PanelLayout {
             title: String::new(),
             plot_area: [pixel_x.start, pixel_y.start, pixel_x.end, pixel_y.end],
@@ -324,7 +345,13 @@ impl MapFigure<'_> {
             line.clear();
             for block_column in 0..block_columns {
                 let s = centre(block_column, columns);
-                let color = diverging_color(field.interpolate_normalised(s, t) / self.limit);
+                let value = field.interpolate_normalised(s, t);
+                // Outside the domain (NaN): white, apart from the grey of a zero deflection.
+                let color = if value.is_nan() {
+                    WHITE
+                } else {
+                    diverging_color(value / self.limit)
+                };
                 let width = block.min(columns - block_column * block);
                 for _ in 0..width {
                     line.extend([color.0, color.1, color.2]);
