@@ -38,7 +38,7 @@ const BAD_VALUES: [&str; 16] = [
 
 /// The keys of the CI sweep: each key with a number, a count, or a number in a list, and the
 /// model parameters that are spellings of other keys.
-const SWEPT_KEYS: [&str; 14] = [
+const SWEPT_KEYS: [&str; 16] = [
     "geometry.lx",
     "material.young",
     "material.poisson",
@@ -49,10 +49,12 @@ const SWEPT_KEYS: [&str; 14] = [
     "model.parameters.wavenumber",
     "mesh.nx",
     "mesh.grading",
+    "mesh.grading_x",
     "load.tension_y",
     "solver.perturbation",
     "solver.max_load",
     "solver.max_amplitude_over_h",
+    "output.profile_line",
 ];
 
 /// How a case ended.

@@ -8,13 +8,17 @@ import gmsh
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
-# (source, output, mesh size factor (Mesh.MeshSizeFactor), binary, grid to snap to (mm) or 0)
+# (source, output, mesh size factor (Mesh.MeshSizeFactor), binary, grid to snap to (mm) or 0,
+#  numbers the .geo reads if set: {name: value})
 MESHES = [
-    ("example1_rectangle.geo", "example1_rectangle.msh", 1.0, False, 6.25),
-    ("example1_rectangle.geo", "example1_rectangle_binary.msh", 1.0, True, 6.25),
-    ("example1_unstructured.geo", "example1_unstructured_25.msh", 1.0, False, 0),
-    ("example1_unstructured.geo", "example1_unstructured_12.msh", 0.5, False, 0),
-    ("example1_unstructured.geo", "example1_unstructured_6.msh", 0.25, True, 0),
+    ("example1_rectangle.geo", "example1_rectangle.msh", 1.0, False, 6.25, {}),
+    ("example1_rectangle.geo", "example1_rectangle_binary.msh", 1.0, True, 6.25, {}),
+    ("example1_unstructured.geo", "example1_unstructured_25.msh", 1.0, False, 0, {}),
+    ("example1_unstructured.geo", "example1_unstructured_12.msh", 0.5, False, 0, {}),
+    ("example1_unstructured.geo", "example1_unstructured_6.msh", 0.25, True, 0, {}),
+    # The annulus: nc elements per quarter turn, nr across, radial growth ratio grow.
+    ("annulus.geo", "annulus.msh", 1.0, False, 0, {"nc": 24, "nr": 12, "grow": 1.08}),
+    ("annulus.geo", "annulus_coarse.msh", 1.0, False, 0, {"nc": 12, "nr": 4, "grow": 1.2}),
 ]
 
 
@@ -30,10 +34,12 @@ def snap(grid):
             gmsh.model.mesh.setNode(tag, snapped, [])
 
 
-def make(source, output, size_factor, binary, grid):
+def make(source, output, size_factor, binary, grid, numbers):
     gmsh.initialize()
     gmsh.option.setNumber("General.Terminal", 0)
-    gmsh.open(os.path.join(HERE, source))
+    for name, value in numbers.items():
+        gmsh.parser.setNumber(name, [value])
+    gmsh.merge(os.path.join(HERE, source))
     gmsh.option.setNumber("Mesh.MeshSizeFactor", size_factor)
     gmsh.model.mesh.generate(2)
     if grid:
