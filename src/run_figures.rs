@@ -141,7 +141,13 @@ pub fn write_profile_line_csv(
             }
         }
     }
-    let cell = |v: f64| if v.is_nan() { String::new() } else { format!("{v}") };
+    let cell = |v: f64| {
+        if v.is_nan() {
+            String::new()
+        } else {
+            format!("{v}")
+        }
+    };
     let mut text = header.join(",") + "\n";
     for (row, &(s, [x, y])) in points.iter().enumerate() {
         let mut cells = vec![format!("{s}"), format!("{x}"), format!("{y}")];
@@ -354,10 +360,12 @@ fn write_membrane_forces(
             continue;
         };
         let quantity = Quantity::new("membrane force", name, "N/mm");
-        let field = GridField::sample(quantity, bounds, columns, rows, |x, y| match mesh.locate([x, y]) {
-            Some((element, _)) => values.get(element).copied().unwrap_or(0.0),
-            None if mesh.grid.is_some() => 0.0,
-            None => f64::NAN,
+        let field = GridField::sample(quantity, bounds, columns, rows, |x, y| {
+            match mesh.locate([x, y]) {
+                Some((element, _)) => values.get(element).copied().unwrap_or(0.0),
+                None if mesh.grid.is_some() => 0.0,
+                None => f64::NAN,
+            }
         });
         let stem = dir.join(format!("membrane_force_{name}"));
         let title = format!(

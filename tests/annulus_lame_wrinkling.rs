@@ -49,8 +49,7 @@ fn the_annulus_wrinkles_and_its_map_and_line_profile_leave_the_hole_blank() {
         assert!(out.join(file).is_file(), "{file}");
     }
     let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
-            .unwrap();
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     let critical = summary["linear_buckling_load"].as_f64().unwrap();
     assert!(critical > 0.0 && critical.is_finite(), "{critical}");
     check_line_profile(&out.join("profile_line.csv"));
@@ -73,7 +72,11 @@ fn check_line_profile(path: &Path) {
             assert!(cells[3..].iter().all(|c| c.is_empty()), "{line}");
             blank += 1;
         } else if x.abs() > 76.0 {
-            assert!(cells[3..].iter().all(|c| c.parse::<f64>().unwrap().is_finite()));
+            assert!(
+                cells[3..]
+                    .iter()
+                    .all(|c| c.parse::<f64>().unwrap().is_finite())
+            );
             filled += 1;
         }
     }

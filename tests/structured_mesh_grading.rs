@@ -40,11 +40,7 @@ fn the_grading_keys_make_the_mesh_they_say() {
     let heights: Vec<f64> = ys.windows(2).map(|w| w[1] - w[0]).collect();
     assert!(heights.iter().all(|h| (h - heights[0]).abs() < 1e-9));
     // A corner refines both of its edges.
-    let corner = scene(&[
-        "mesh.grading=3",
-        "mesh.refine_toward=[\"top_left\"]",
-    ])
-    .unwrap();
+    let corner = scene(&["mesh.grading=3", "mesh.refine_toward=[\"top_left\"]"]).unwrap();
     let grid = build_mesh(&corner).unwrap().grid.unwrap();
     assert!(grid.xs[1] - grid.xs[0] < grid.xs[32] - grid.xs[31]);
     assert!(grid.ys[16] - grid.ys[15] < grid.ys[1] - grid.ys[0]);
@@ -77,7 +73,10 @@ fn hostile_gradings_exit_2_naming_the_key() {
             "expected one of",
         ),
         (
-            &["mesh.grading_y=3", "mesh.refine_toward=[\"left\", \"right\"]"][..],
+            &[
+                "mesh.grading_y=3",
+                "mesh.refine_toward=[\"left\", \"right\"]",
+            ][..],
             "mesh.grading_y",
             "names neither `bottom` nor `top`",
         ),

@@ -172,7 +172,13 @@ mod tests {
             [0.0, 1.0, 0.0, 1.0],
             2,
             2,
-            |x, y| if x > 0.5 && y > 0.5 { f64::NAN } else { 1.0 + x },
+            |x, y| {
+                if x > 0.5 && y > 0.5 {
+                    f64::NAN
+                } else {
+                    1.0 + x
+                }
+            },
         );
         assert!(field.interpolate_normalised(0.9, 0.9).is_nan());
         let near_left = field.interpolate_normalised(0.1, 0.6);

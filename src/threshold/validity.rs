@@ -161,7 +161,9 @@ impl ModeOnMesh<'_> {
         let carries = |e: usize| {
             peak == 0.0
                 || self.mesh.element_nodes(e).iter().any(|&n| {
-                    self.nodal.get(n).is_some_and(|v| v.abs() >= MODE_SUPPORT_FRACTION * peak)
+                    self.nodal
+                        .get(n)
+                        .is_some_and(|v| v.abs() >= MODE_SUPPORT_FRACTION * peak)
                 })
         };
         (0..self.mesh.element_count())

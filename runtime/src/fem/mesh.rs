@@ -658,7 +658,10 @@ mod tests {
             ratio: 5.0,
             ends: RefinedEnds::Neither,
         };
-        assert_eq!(neither.breakpoints(10.0, 6), graded_breakpoints(10.0, 6, 1.0));
+        assert_eq!(
+            neither.breakpoints(10.0, 6),
+            graded_breakpoints(10.0, 6, 1.0)
+        );
         assert_eq!(
             AxisGrading::symmetric(3.0).breakpoints(10.0, 7),
             graded_breakpoints(10.0, 7, 3.0)

@@ -89,7 +89,10 @@ impl ElementBins {
         let along_x = (count * width / height.max(f64::MIN_POSITIVE))
             .sqrt()
             .clamp(1.0, count);
-        let counts = [along_x.ceil() as usize, (count / along_x).ceil().max(1.0) as usize];
+        let counts = [
+            along_x.ceil() as usize,
+            (count / along_x).ceil().max(1.0) as usize,
+        ];
         let size = [
             (width / counts[0] as f64).max(f64::MIN_POSITIVE),
             (height / counts[1] as f64).max(f64::MIN_POSITIVE),
@@ -148,7 +151,8 @@ impl ElementBins {
 
     /// The elements whose box may hold `point`, in increasing order (empty off the grid).
     pub fn candidates(&self, point: [f64; 2]) -> &[usize] {
-        let inside = |axis: usize| point[axis] >= self.origin[axis] && point[axis] <= self.upper[axis];
+        let inside =
+            |axis: usize| point[axis] >= self.origin[axis] && point[axis] <= self.upper[axis];
         if !(inside(0) && inside(1)) {
             return &[];
         }
