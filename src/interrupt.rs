@@ -31,6 +31,19 @@ pub fn requested() -> bool {
     REQUESTED.load(Ordering::SeqCst)
 }
 
+/// Asks the path being traced to stop after its current point, as a Ctrl-C during the path
+/// does — for a host that catches the interrupt itself (the Python package checks Python's
+/// signals while a run works on another thread).
+pub fn request() {
+    REQUESTED.store(true, Ordering::SeqCst);
+}
+
+/// Forgets an earlier request, before the next run of a process that runs many (the Python
+/// package); the command line runs one and never needs it.
+pub fn clear() {
+    REQUESTED.store(false, Ordering::SeqCst);
+}
+
 /// While alive, a Ctrl-C asks the path to stop instead of ending the process.
 pub struct PathPhase(());
 
