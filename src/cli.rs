@@ -317,12 +317,7 @@ fn compare(
 ) -> Result<(), Error> {
     let models_named = models.to_vec();
     let models: Vec<String> = if models.is_empty() {
-        wrinkle_models::catalogue()
-            .into_iter()
-            .filter(|spec| crate::physics::Layout::from_spec(spec).is_ok())
-            .filter(|spec| spec.derivation.is_none())
-            .map(|spec| spec.name.to_string())
-            .collect()
+        crate::compare::default_models()
     } else {
         models.to_vec()
     };

@@ -272,6 +272,18 @@ fn model_scene(
     Ok((one, Some(note)))
 }
 
+/// The models `wrinkle compare` runs when none is named: every registered model of a plane
+/// domain (roles that give a plane [`Layout`](crate::physics::Layout)) written by hand (no
+/// [`ModelSpec::derivation`](wrinkle_runtime::model::ModelSpec::derivation)).
+pub fn default_models() -> Vec<String> {
+    wrinkle_models::catalogue()
+        .into_iter()
+        .filter(|spec| crate::physics::Layout::from_spec(spec).is_ok())
+        .filter(|spec| spec.derivation.is_none())
+        .map(|spec| spec.name.to_string())
+        .collect()
+}
+
 /// Runs `scene` with each of `models` into `directory/MODEL/` and writes the comparison files.
 pub fn compare(
     scene: &Scene,
