@@ -125,6 +125,12 @@ pub enum Command {
         #[arg(long, value_name = "NAME")]
         show: Option<String>,
     },
+    /// Runs the scene over a grid of key values, each point in its own process and directory,
+    /// into a table `sweep.csv`; see docs/python.md.
+    Sweep(crate::sweep::SweepArguments),
+    /// One point of a sweep (run by `sweep`, its scene recipe as JSON on standard input).
+    #[command(hide = true)]
+    SweepPoint(crate::sweep::SweepPointArguments),
     /// Print the effective scene (defaults, file and overrides merged) as TOML.
     Scene {
         /// Scene and overrides.
@@ -235,6 +241,8 @@ pub fn execute(command: &Command) -> Result<(), Error> {
         } => analytic(&scene.resolve()?, *json, *table_1),
         Command::Models { show: None } => print_stdout(&models_listing(&commands::models())),
         Command::Models { show: Some(name) } => print_stdout(&commands::model_details(name)?),
+        Command::Sweep(arguments) => crate::sweep::command::sweep(arguments),
+        Command::SweepPoint(arguments) => crate::sweep::command::sweep_point(arguments),
         Command::Scene { scene } => print_stdout(&scene.resolve()?.to_toml_string()),
     }
 }

@@ -21,6 +21,8 @@
 //!   and [`memory`] serve every layer;
 //! * [`line`](mod@line) is the same pipeline on a line domain (`geometry.kind = "line"`, a
 //!   beam), which `buckle`, `run` and `compare` hand a line scene to.
+//! * [`sweep`] runs a scene over a grid of key values (`wrinkle sweep`, and the Python
+//!   package's Dask sweeps).
 
 pub mod analytic;
 pub mod bench;
@@ -44,6 +46,7 @@ pub mod run_outputs;
 pub mod scene;
 pub mod setup;
 pub mod study;
+pub mod sweep;
 pub mod threshold;
 
 pub use error::{EXIT_INTERRUPTED, Error};
