@@ -34,10 +34,11 @@ pub use docs::{key_table, refresh_key_tables};
 pub use keys::Given;
 pub use kinds::{BoundarySpec, Component, InPlane, Transverse};
 pub use schema::{
-    AxisRatio, BUILT_IN_SOURCE, Direction, Domain, Geometry, Imperfection, KEYS, LENGTH_RANGE, LoadKind, LoadSpec,
-    MAX_ELEMENT_ASPECT_RATIO, MAX_ELEMENTS, MAX_ELEMENTS_PER_SIDE, MAX_SERIES_TOLERANCE, MAX_STEPS,
-    MAX_VTU_LOADS, Material, MeshSpec, ModelChoice, OutputSpec, PathMethod, REFINE_TARGETS,
-    SECTIONS, Scene, SolverSpec, VALIDITY_CHECKS, ValiditySpec, Wavenumber,
+    AxisRatio, BUILT_IN_SOURCE, Direction, Domain, Geometry, Imperfection, KEYS, LENGTH_RANGE,
+    LoadKind, LoadSpec, MAX_ELEMENT_ASPECT_RATIO, MAX_ELEMENTS, MAX_ELEMENTS_PER_SIDE,
+    MAX_SERIES_TOLERANCE, MAX_STEPS, MAX_VTU_LOADS, Material, MeshSpec, ModelChoice, OutputSpec,
+    PathMethod, REFINE_TARGETS, SECTIONS, Scene, SolverSpec, VALIDITY_CHECKS, ValiditySpec,
+    Wavenumber,
 };
 
 use crate::closed_form::ClampedRectangle;
