@@ -18,7 +18,7 @@ fn scene_command_prints_an_effective_scene_that_parses_back() {
         "scene",
         "examples/scenes/long_strip.toml",
         "--set",
-        "mesh.nx=7",
+        "mesh.nx=48",
         "--set",
         "material.poisson=0.2",
     ]);
@@ -31,7 +31,7 @@ fn scene_command_prints_an_effective_scene_that_parses_back() {
     let text = String::from_utf8(output.stdout).unwrap();
     let printed = Scene::from_toml_str(&text, "printed").unwrap();
     let mut expected = Scene::load("examples/scenes/long_strip.toml").unwrap();
-    expected.mesh.elements_x = 7;
+    expected.mesh.elements_x = 48;
     expected.material.poisson_ratio = 0.2;
     assert_eq!(
         Scene {
