@@ -22,13 +22,14 @@ use crate::output::{
 };
 use crate::results::{RunSummary, load_quantity};
 use crate::run::run_with;
-use crate::scene::Scene;
+use crate::scene::{AxisRatio, Scene};
 use crate::study::{check_model_list, load_at_amplitude, number_cell};
 use crate::threshold::{
     MIN_ELEMENTS_PER_WAVELENGTH, ThresholdOptions, WavenumberModel, closed_form_threshold,
 };
 use serde_json::json;
 use std::path::Path;
+use wrinkle_runtime::fem::mesh::AxisGrading;
 use wrinkle_runtime::wavelength::WavelengthSelection;
 
 /// Physical amplitudes $`a/h`$ at which the loads are compared.
@@ -183,35 +184,72 @@ fn response_of(model: &str, summary: &RunSummary, load: &Quantity) -> Option<Res
     })
 }
 
-/// For a model whose wrinkles are fields resolved by the mesh (a plate), the mesh of `scene`
-/// refined along the wave direction to at least [`MIN_ELEMENTS_PER_WAVELENGTH`] elements per
-/// wavelength (with a tenth to spare, a multiple of 4), the other side refined too so that
-/// elements are at most 4 times longer than wide; `None` when the scene's mesh already
-/// resolves `wavelength` (mm).
-fn resolving_mesh(
-    scene: &Scene,
-    wavelength: f64,
-    direction_degrees: f64,
-) -> Option<(usize, usize)> {
+/// The largest element of `n` along one axis of length `length` graded by `grading`.
+fn largest_element(grading: &AxisGrading, length: f64, n: usize) -> f64 {
+    grading
+        .breakpoints(length, n)
+        .windows(2)
+        .map(|pair| pair[1] - pair[0])
+        .fold(0.0, f64::max)
+}
+
+/// A structured mesh chosen by `compare` for a model resolved by the mesh.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct ResolvingMesh {
+    nx: usize,
+    ny: usize,
+    /// Whether the wave axis is X (else Y); that axis is made uniform.
+    along_x: bool,
+}
+
+/// For a model whose wrinkles are fields resolved by the mesh (a plate), the structured mesh
+/// of `scene` refined along the wave direction to at least [`MIN_ELEMENTS_PER_WAVELENGTH`]
+/// elements per wavelength (with a tenth to spare, a multiple of 4) and made uniform along
+/// that axis (a grading there would leave the waves under-resolved where the elements are
+/// largest), the other axis keeping its grading and refined so that its largest element is at
+/// most 4 times the wave axis's; `None` when the scene's mesh already resolves `wavelength`
+/// (mm) with its largest element, or when the mesh is a file (its own run checks it).
+fn resolving_mesh(scene: &Scene, wavelength: f64, direction_degrees: f64) -> Option<ResolvingMesh> {
+    if !scene.mesh.file.is_empty() {
+        return None;
+    }
     let theta = direction_degrees.to_radians();
     let along_y = theta.sin().abs() > theta.cos().abs();
+    let [grading_x, grading_y] = scene.mesh.axis_gradings();
     let (nx, ny) = (scene.mesh.elements_x, scene.mesh.elements_y);
     let (lx, ly) = (scene.geometry.length_x, scene.geometry.length_y);
-    let (n_wave, l_wave, n_other, l_other) = if along_y {
-        (ny, ly, nx, lx)
+    let (n_wave, l_wave, g_wave, n_other, l_other, g_other) = if along_y {
+        (ny, ly, grading_y, nx, lx, grading_x)
     } else {
-        (nx, lx, ny, ly)
+        (nx, lx, grading_x, ny, ly, grading_y)
     };
-    if l_wave / n_wave as f64 * MIN_ELEMENTS_PER_WAVELENGTH <= wavelength {
+    if largest_element(&g_wave, l_wave, n_wave) * MIN_ELEMENTS_PER_WAVELENGTH <= wavelength {
         return None;
     }
     let needed =
         (1.1 * MIN_ELEMENTS_PER_WAVELENGTH * l_wave / wavelength / 4.0).ceil() as usize * 4;
-    let other = n_other.max((l_other / (4.0 * l_wave / needed as f64)).ceil() as usize);
+    let longest = 4.0 * l_wave / needed as f64;
+    // Bounded: the uniform count that satisfies it (the largest graded element only shrinks
+    // as elements are added); the scene's validation then refuses a mesh too large.
+    let uniform = (l_other / longest).ceil() as usize;
+    let mut other = n_other.max(1);
+    while other < uniform.max(n_other) * 64
+        && largest_element(&g_other, l_other, other) > longest * (1.0 + 1e-12)
+    {
+        other += 1;
+    }
     Some(if along_y {
-        (other, needed)
+        ResolvingMesh {
+            nx: other,
+            ny: needed,
+            along_x: false,
+        }
     } else {
-        (needed, other)
+        ResolvingMesh {
+            nx: needed,
+            ny: other,
+            along_x: true,
+        }
     })
 }
 
@@ -250,11 +288,19 @@ fn model_scene(
         .direction
         .fixed_degrees()
         .unwrap_or(carrier.direction_degrees);
-    let Some((nx, ny)) = resolving_mesh(&one, wavelength, direction) else {
+    let Some(ResolvingMesh { nx, ny, along_x }) = resolving_mesh(&one, wavelength, direction)
+    else {
         return Ok((one, None));
     };
+    let [grading_x, grading_y] = one.mesh.axis_gradings();
+    let was_graded = if along_x { grading_x } else { grading_y }.ratio > 1.0;
+    let uniform_note = if was_graded {
+        format!(", uniform along {}", if along_x { "X" } else { "Y" })
+    } else {
+        String::new()
+    };
     let note = format!(
-        "{model}: mesh {nx}×{ny} instead of the scene's {}×{}, to resolve its waves ({} elements per wavelength of {wavelength:.2} mm, the wavelength of {}); set another with --model-set {model}:mesh.nx=…",
+        "{model}: mesh {nx}×{ny}{uniform_note} instead of the scene's {}×{}, to resolve its waves ({} elements per wavelength of {wavelength:.2} mm, the wavelength of {}); set another with --model-set {model}:mesh.nx=…",
         one.mesh.elements_x,
         one.mesh.elements_y,
         MIN_ELEMENTS_PER_WAVELENGTH,
@@ -262,6 +308,13 @@ fn model_scene(
     );
     one.mesh.elements_x = nx;
     one.mesh.elements_y = ny;
+    if was_graded {
+        if along_x {
+            one.mesh.grading_x = AxisRatio::Fixed(1.0);
+        } else {
+            one.mesh.grading_y = AxisRatio::Fixed(1.0);
+        }
+    }
     // A mesh too large to solve: refuse (exit 4) naming the model and the mesh it needs.
     one.validate().map_err(|error| {
         Error::Invalid(format!(
@@ -648,18 +701,52 @@ mod tests {
             (400.0, 200.0)
         );
         let wavelength = 26.6876;
-        assert_eq!(resolving_mesh(&scene, wavelength, 0.0), Some((132, 17)));
+        assert_eq!(
+            resolving_mesh(&scene, wavelength, 0.0),
+            Some(ResolvingMesh {
+                nx: 132,
+                ny: 17,
+                along_x: true
+            })
+        );
         let mut fine = scene.clone();
         fine.mesh.elements_x = 128;
         fine.mesh.elements_y = 32;
         assert_eq!(resolving_mesh(&fine, wavelength, 0.0), None);
         // Waves along Y (the strip): Y is refined.
         let along_y = scene.clone();
-        let (nx, ny) = resolving_mesh(&along_y, wavelength, 90.0).unwrap();
+        let ResolvingMesh { nx, ny, along_x } = resolving_mesh(&along_y, wavelength, 90.0).unwrap();
         assert!(
-            ny as f64 * wavelength / 200.0 >= 8.0 && nx >= 32,
+            !along_x && ny as f64 * wavelength / 200.0 >= 8.0 && nx >= 32,
             "{nx}×{ny}"
         );
+    }
+
+    /// The shipped long strip (1400 × 200 mm, 56 × 16 graded 12 toward its four corners, waves
+    /// of 25.30 mm along Y): its 16 elements across are 1.3 per wavelength where they are
+    /// largest. The plate gets 72 uniform elements across (8.5 per wavelength everywhere), and
+    /// along X as many graded elements as keep the largest within 4 times 200/72 mm; a
+    /// file mesh is never replaced.
+    #[test]
+    fn a_graded_strip_gets_a_mesh_uniform_along_its_waves() {
+        let scene = Scene::load(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/examples/scenes/long_strip.toml"
+        ))
+        .unwrap();
+        let wavelength = 25.3044;
+        let ResolvingMesh { nx, ny, along_x } = resolving_mesh(&scene, wavelength, 90.0).unwrap();
+        assert!(!along_x);
+        assert_eq!(ny, 72);
+        let [grading_x, _] = scene.mesh.axis_gradings();
+        let longest = 4.0 * 200.0 / 72.0;
+        assert!(largest_element(&grading_x, 1400.0, nx) <= longest);
+        assert!(largest_element(&grading_x, 1400.0, nx - 1) > longest);
+        // More than the uniform count (1400 / 11.1 = 126): the middle elements are the largest.
+        assert!(nx > 126, "{nx}");
+        let mut file = scene.clone();
+        file.mesh.file = "annulus.msh".into();
+        assert_eq!(resolving_mesh(&file, wavelength, 90.0), None);
     }
 
     fn row(model: &str, outcome: &str, checks: &[&str], critical: f64) -> CompareRow {
