@@ -206,8 +206,8 @@ struct ResolvingMesh {
 /// of `scene` refined along the wave direction to at least [`MIN_ELEMENTS_PER_WAVELENGTH`]
 /// elements per wavelength (with a tenth to spare, a multiple of 4) and made uniform along
 /// that axis (a grading there would leave the waves under-resolved where the elements are
-/// largest), the other axis keeping its grading and refined so that its largest element is at
-/// most 4 times the wave axis's; `None` when the scene's mesh already resolves `wavelength`
+/// largest), the other axis keeping its grading with at least as many elements as a uniform
+/// mesh of elements at most 4 times longer than wide; `None` when the scene's mesh already resolves `wavelength`
 /// (mm) with its largest element, or when the mesh is a file (its own run checks it).
 fn resolving_mesh(scene: &Scene, wavelength: f64, direction_degrees: f64) -> Option<ResolvingMesh> {
     if !scene.mesh.file.is_empty() {
@@ -218,26 +218,20 @@ fn resolving_mesh(scene: &Scene, wavelength: f64, direction_degrees: f64) -> Opt
     let [grading_x, grading_y] = scene.mesh.axis_gradings();
     let (nx, ny) = (scene.mesh.elements_x, scene.mesh.elements_y);
     let (lx, ly) = (scene.geometry.length_x, scene.geometry.length_y);
-    let (n_wave, l_wave, g_wave, n_other, l_other, g_other) = if along_y {
-        (ny, ly, grading_y, nx, lx, grading_x)
+    let (n_wave, l_wave, g_wave, n_other, l_other) = if along_y {
+        (ny, ly, grading_y, nx, lx)
     } else {
-        (nx, lx, grading_x, ny, ly, grading_y)
+        (nx, lx, grading_x, ny, ly)
     };
     if largest_element(&g_wave, l_wave, n_wave) * MIN_ELEMENTS_PER_WAVELENGTH <= wavelength {
         return None;
     }
     let needed =
         (1.1 * MIN_ELEMENTS_PER_WAVELENGTH * l_wave / wavelength / 4.0).ceil() as usize * 4;
-    let longest = 4.0 * l_wave / needed as f64;
-    // Bounded: the uniform count that satisfies it (the largest graded element only shrinks
-    // as elements are added); the scene's validation then refuses a mesh too large.
-    let uniform = (l_other / longest).ceil() as usize;
-    let mut other = n_other.max(1);
-    while other < uniform.max(n_other) * 64
-        && largest_element(&g_other, l_other, other) > longest * (1.0 + 1e-12)
-    {
-        other += 1;
-    }
+    // As many elements across as a uniform mesh whose elements are at most 4 times longer
+    // than wide; a grading across is kept (it is there for the membrane state, which the
+    // wave axis's count does not see).
+    let other = n_other.max((l_other / (4.0 * l_wave / needed as f64)).ceil() as usize);
     Some(if along_y {
         ResolvingMesh {
             nx: other,
@@ -724,9 +718,8 @@ mod tests {
 
     /// The shipped long strip (1400 × 200 mm, 56 × 16 graded 12 toward its four corners, waves
     /// of 25.30 mm along Y): its 16 elements across are 1.3 per wavelength where they are
-    /// largest. The plate gets 72 uniform elements across (8.5 per wavelength everywhere), and
-    /// along X as many graded elements as keep the largest within 4 times 200/72 mm; a
-    /// file mesh is never replaced.
+    /// largest. The plate gets 72 uniform elements across (8.5 per wavelength everywhere) and
+    /// 126 along X, graded as the scene says; a file mesh is never replaced.
     #[test]
     fn a_graded_strip_gets_a_mesh_uniform_along_its_waves() {
         let scene = Scene::load(concat!(
@@ -738,12 +731,8 @@ mod tests {
         let ResolvingMesh { nx, ny, along_x } = resolving_mesh(&scene, wavelength, 90.0).unwrap();
         assert!(!along_x);
         assert_eq!(ny, 72);
-        let [grading_x, _] = scene.mesh.axis_gradings();
-        let longest = 4.0 * 200.0 / 72.0;
-        assert!(largest_element(&grading_x, 1400.0, nx) <= longest);
-        assert!(largest_element(&grading_x, 1400.0, nx - 1) > longest);
-        // More than the uniform count (1400 / 11.1 = 126): the middle elements are the largest.
-        assert!(nx > 126, "{nx}");
+        // 1400 / (4 × 200 / 72) = 126 along X, still graded 12 toward the corners.
+        assert_eq!(nx, 126);
         let mut file = scene.clone();
         file.mesh.file = "annulus.msh".into();
         assert_eq!(resolving_mesh(&file, wavelength, 90.0), None);

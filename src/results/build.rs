@@ -265,9 +265,9 @@ fn notices(context: &RunContext, trace: &Trace) -> Vec<Warning> {
             Severity::Warning,
             "loss of ellipticity",
             format!(
-                "from λ = {} on {:.2} % of the area (worst at ({:.4}, {:.4}) mm, field `{}`): beyond it the model's solutions depend on the mesh",
+                "from λ = {} on {} % of the area (worst at ({:.4}, {:.4}) mm, field `{}`): beyond it the model's solutions depend on the mesh there",
                 context.load_quantity().format_value(*load),
-                100.0 * report.violated_fraction,
+                crate::output::quantity::format_significant(100.0 * report.violated_fraction, 2),
                 report.location[0],
                 report.location[1],
                 report.field
