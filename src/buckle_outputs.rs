@@ -264,6 +264,9 @@ fn mode_field_data(scene: &Scene, threshold: &Threshold) -> FieldData {
     }
 }
 
+/// The plot of the search draws the evaluations below this multiple of $`\lambda_c`$.
+const PLOT_LOAD_WINDOW: f64 = 3.0;
+
 /// `wavenumber_search.csv` (one row per evaluation, in the order done: the search's, then the
 /// scan's) and `wavenumber_search.png/.svg` ($`\lambda_c`$ against $`Q`$, accepted
 /// evaluations).
@@ -273,7 +276,7 @@ fn write_search(
     evaluations: &[WavenumberEvaluation],
     dir: &Path,
 ) -> Result<Vec<PathBuf>, Error> {
-    let mut csv = String::from("wavenumber,critical_load,phase,rejected\n");
+    let mut csv = String::from("wavenumber,critical_load,phase,mesh,rejected\n");
     let searched = threshold.search.len();
     for (index, evaluation) in evaluations.iter().enumerate() {
         csv.push_str(&search_row(evaluation, index < searched));
@@ -281,19 +284,71 @@ fn write_search(
     let path = dir.join(SEARCH_CSV_FILE);
     write_bytes_atomically(&path, csv.as_bytes()).map_err(io_error(&path))?;
     let mut files = vec![path];
-    let mut points: Vec<(f64, f64)> = evaluations
-        .iter()
-        .filter_map(|e| e.critical_load.map(|load| (e.parameter, load)))
-        .collect();
-    points.sort_by(|a, b| a.0.total_cmp(&b.0));
-    if points.len() < 2 {
+    // One curve per mesh: the half mesh's first level of the search and the scene's own mesh
+    // give different λ_c(Q) (the strip: 13.44 against 14.38 mm at the minimum), and one line
+    // through both would zigzag between them.
+    let curve = |coarse: bool| {
+        let mut points: Vec<(f64, f64)> = evaluations
+            .iter()
+            .filter(|e| e.coarse == coarse)
+            .filter_map(|e| e.critical_load.map(|load| (e.parameter, load)))
+            .collect();
+        points.sort_by(|a, b| a.0.total_cmp(&b.0));
+        points
+    };
+    let (mut points, mut coarse_points) = (curve(false), curve(true));
+    if points.len() + coarse_points.len() < 2 {
         return Ok(files);
+    }
+    // The search's log-scan reaches loads hundreds of times the threshold (the strip: 900 mm
+    // against 14.4 mm), which would flatten the minimum the plot is for: the plot keeps the
+    // evaluations below PLOT_LOAD_WINDOW × λ_c when enough remain; the CSV keeps them all.
+    let window = PLOT_LOAD_WINDOW * threshold.critical_load().abs();
+    let near = |points: &[(f64, f64)]| -> Vec<(f64, f64)> {
+        points
+            .iter()
+            .copied()
+            .filter(|&(_, load)| load.abs() <= window)
+            .collect()
+    };
+    let (near_fine, near_coarse) = (near(&points), near(&coarse_points));
+    let all = points.len() + coarse_points.len();
+    let kept = near_fine.len() + near_coarse.len();
+    let left_out = if kept >= 5 && kept < all {
+        points = near_fine;
+        coarse_points = near_coarse;
+        format!("; {} above {PLOT_LOAD_WINDOW} λ_c: CSV only", all - kept)
+    } else {
+        String::new()
+    };
+    let mut profiles = Vec::new();
+    if !points.is_empty() {
+        profiles.push(Profile {
+            label: format!(
+                "scene's mesh ({}×{}), {} evaluations",
+                scene.mesh.elements_x,
+                scene.mesh.elements_y,
+                points.len()
+            ),
+            points,
+        });
+    }
+    if !coarse_points.is_empty() {
+        profiles.push(Profile {
+            label: format!(
+                "half mesh ({}×{}, first level), {} evaluations",
+                scene.mesh.elements_x / 2,
+                scene.mesh.elements_y / 2,
+                coarse_points.len()
+            ),
+            points: coarse_points,
+        });
     }
     let load = crate::results::load_quantity(scene);
     let (low, high) = wavenumber_range(scene);
     let chosen = threshold.wavenumber.map_or(String::new(), |q| {
         format!(
-            ", minimum at Q = {q:.5} /mm, λ_c = {}",
+            "; minimum Q = {q:.5} /mm, λ_c = {}",
             load.format_value(threshold.critical_load())
         )
     });
@@ -301,13 +356,10 @@ fn write_search(
         abscissa: Quantity::new("wavenumber", "Q", "1/mm"),
         ordinate: Quantity::new("critical load", "λ_c", &load.unit),
         location: format!(
-            "search over Q in [{low:.4}, {high:.4}] /mm and a scan of {SCAN_POINTS} from {} to {} Q{chosen}",
+            "Q in [{low:.3}, {high:.3}] /mm, then {}–{} Q{chosen}{left_out}",
             SCAN_RANGE.0, SCAN_RANGE.1
         ),
-        profiles: vec![Profile {
-            label: format!("{} evaluations", points.len()),
-            points,
-        }],
+        profiles,
     };
     let stem = dir.join("wavenumber_search");
     let minimum = ReferenceLevel {
@@ -333,7 +385,7 @@ fn search_row(evaluation: &WavenumberEvaluation, searched: bool) -> String {
         .unwrap_or("")
         .replace(['"', ','], ";");
     format!(
-        "{},{},{},{}\n",
+        "{},{},{},{},{}\n",
         evaluation.parameter,
         evaluation
             .critical_load
@@ -343,6 +395,7 @@ fn search_row(evaluation: &WavenumberEvaluation, searched: bool) -> String {
             (true, false) => "search refinement",
             (false, _) => "curve scan",
         },
+        if evaluation.coarse { "half" } else { "scene" },
         rejected
     )
 }

@@ -110,6 +110,9 @@ pub(super) fn two_level_search<M: EnergyModel>(
             let mut fine =
                 minimise_critical_load(problem, factor, &local, observer).map_err(solve_error)?;
             let mut evaluations = first.evaluations;
+            for evaluation in &mut evaluations {
+                evaluation.coarse = true;
+            }
             evaluations.append(&mut fine.evaluations);
             fine.evaluations = evaluations;
             fine

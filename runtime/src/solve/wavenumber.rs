@@ -137,6 +137,9 @@ pub struct WavenumberEvaluation {
     pub eigen_iterations: usize,
     /// Whether this evaluation belongs to the initial scan (else to the refinement).
     pub scan: bool,
+    /// Whether it was done on a coarser mesh than the problem's (a caller's two-level search
+    /// marks its first level; [`minimise_critical_load`] itself never does).
+    pub coarse: bool,
 }
 
 /// Outcome of [`minimise_critical_load`].
@@ -211,6 +214,7 @@ impl<M: EnergyModel> Searcher<'_, M> {
             rejected: None,
             eigen_iterations: 0,
             scan: self.scanning,
+            coarse: false,
         };
         let value = match self.analyse(parameter) {
             Ok((buckling, ellipticity, reference)) => {

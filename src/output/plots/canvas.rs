@@ -469,9 +469,12 @@ pub(crate) fn draw_centred_text<DB: DrawingBackend>(
     scale: Scale,
 ) -> DrawResult<(), DB> {
     let (width, _) = text_size(text, size);
+    // Centred on `x`, but never starting left of the area (a long title is shifted right
+    // rather than cut at the left edge).
+    let left = (x - 0.5 * width).max(4.0);
     area.draw(&Text::new(
         text.to_string(),
-        (scale.px(x - 0.5 * width), scale.px(top)),
+        (scale.px(left), scale.px(top)),
         scale.font(size).color(&color),
     ))?;
     Ok(())
