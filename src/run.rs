@@ -576,21 +576,11 @@ fn follow_options<M: EnergyModel>(
     let landing_corrector = riks.corrector();
     let method = match scene.solver.method {
         PathMethod::Anm => FollowMethod::Anm(AnmOptions {
-            order: scene.solver.order,
-            series_tolerance: scene.solver.series_tolerance,
-            residual_tolerance: scene.solver.tolerance,
-            max_steps: scene.solver.max_steps,
-            max_load,
-            pade: scene.solver.pade,
-            corrector: NewtonOptions {
-                tolerance: scene.solver.tolerance * 1e-3,
-                max_iterations: 12,
-            },
             // The threshold's mode starts the eigen-solver of the bifurcation prediction.
             bifurcation_mode_guess: threshold.buckling.modes.first().cloned(),
             // ... and its load is the guess the prediction is shifted towards.
             bifurcation_load_guess: Some(critical_load).filter(|l| l.is_finite()),
-            ..AnmOptions::default()
+            ..anm_options(scene, max_load)
         }),
         PathMethod::Riks => FollowMethod::Riks(riks),
     };
@@ -598,6 +588,25 @@ fn follow_options<M: EnergyModel>(
         method,
         amplitude_target: Some(scene.solver.max_amplitude_over_thickness),
         landing_corrector,
+    }
+}
+
+/// The ANM settings the scene's `[solver]` gives (order, tolerances, steps, Padé, the
+/// corrector at a thousandth of the residual tolerance), up to `max_load`: shared by the plane
+/// and the line paths, which add their own bifurcation settings.
+pub(crate) fn anm_options(scene: &Scene, max_load: Option<f64>) -> AnmOptions {
+    AnmOptions {
+        order: scene.solver.order,
+        series_tolerance: scene.solver.series_tolerance,
+        residual_tolerance: scene.solver.tolerance,
+        max_steps: scene.solver.max_steps,
+        max_load,
+        pade: scene.solver.pade,
+        corrector: NewtonOptions {
+            tolerance: scene.solver.tolerance * 1e-3,
+            max_iterations: 12,
+        },
+        ..AnmOptions::default()
     }
 }
 

@@ -193,18 +193,8 @@ fn follow_options(scene: &Scene, critical_load: f64) -> FollowOptions {
     let landing_corrector = riks.corrector();
     let method = match scene.solver.method {
         PathMethod::Anm => FollowMethod::Anm(AnmOptions {
-            order: scene.solver.order,
-            series_tolerance: scene.solver.series_tolerance,
-            residual_tolerance: scene.solver.tolerance,
-            max_steps: scene.solver.max_steps,
-            max_load,
-            pade: scene.solver.pade,
-            corrector: NewtonOptions {
-                tolerance: scene.solver.tolerance * 1e-3,
-                max_iterations: 12,
-            },
             predict_bifurcation: false,
-            ..AnmOptions::default()
+            ..crate::run::anm_options(scene, max_load)
         }),
         PathMethod::Riks => FollowMethod::Riks(riks),
     };
