@@ -1,8 +1,13 @@
 //! Sparse factorisations of symmetric matrices with the symbolic analysis done once per pattern.
 //!
-//! The symbolic phase (fill-reducing AMD ordering, elimination tree, structure of the factor) only
+//! The symbolic phase (fill-reducing ordering, elimination tree, structure of the factor) only
 //! depends on the [`SparsityPattern`]; it is computed by [`SparseFactorization::analyze`] and
-//! reused by every [`SparseFactorization::factorize`]. The numeric phase tries, in order,
+//! reused by every [`SparseFactorization::factorize`] (and shared by the factorisations
+//! [`SparseFactorization::same_analysis`] makes). The ordering is faer's approximate minimum
+//! degree or, from [`DISSECTION_FROM`] unknowns, the project's nested dissection
+//! ([`super::ordering`]) when its factor costs less ([`factorization_work`]): on the plate's
+//! elongated Q8 meshes it does (example 1 at 128 × 32: 44 % less work), on square grids it
+//! does not. The numeric phase tries, in order,
 //! 1. $`A = L L^\top`$ (Cholesky), which succeeds iff $`A`$ is numerically positive definite;
 //! 2. $`A = L D L^\top`$ without pivoting on the same symbolic structure, accepted when no pivot
 //!    $`d_k`$ is tiny relative to the scale of its column (and none grew excessively); the signs
@@ -67,7 +72,8 @@ pub struct SparseFactorization {
     dimension: usize,
     col_ptr: Vec<usize>,
     row_idx: Vec<usize>,
-    symbolic: Option<SymbolicCholesky<usize>>,
+    /// Shared with the factorisations made from this one ([`SparseFactorization::same_analysis`]).
+    symbolic: Option<std::sync::Arc<SymbolicCholesky<usize>>>,
     factor_values: Vec<f64>,
     factor_scratch: MemBuffer,
     lu: Option<LuFactors>,
@@ -97,11 +103,123 @@ fn backend(error: impl std::fmt::Debug) -> LinearError {
     LinearError::Backend(format!("{error:?}"))
 }
 
+/// Which fill-reducing ordering an analysis uses ([`SparseFactorization::analyze`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OrderingChoice {
+    /// The cheaper of the two below by the estimated factorisation work (the default).
+    Cheaper,
+    /// Approximate minimum degree (faer's).
+    Amd,
+    /// Nested dissection ([`super::ordering::nested_dissection`]).
+    NestedDissection,
+}
+
+/// Floating-point operations of a numeric Cholesky factorisation with this structure, estimated
+/// from its columns: $`\sum_j c_j^2`$ with $`c_j`$ the entries of column $`j`$ of $`L`$ below
+/// the diagonal (one multiply–add per entry pair of the column's outer-product update).
+pub fn factorization_work(symbolic: &SymbolicCholesky<usize>) -> f64 {
+    match symbolic.raw() {
+        SymbolicCholeskyRaw::Simplicial(simplicial) => simplicial
+            .col_ptr()
+            .windows(2)
+            .map(|w| ((w[1] - w[0]) as f64).powi(2))
+            .sum(),
+        SymbolicCholeskyRaw::Supernodal(supernodal) => {
+            let begin = supernodal.supernode_begin();
+            let end = supernodal.supernode_end();
+            let rows = supernodal.col_ptr_for_row_idx();
+            (0..supernodal.n_supernodes())
+                .map(|s| {
+                    let width = (end[s] - begin[s]) as f64;
+                    let below = (rows[s + 1] - rows[s]) as f64;
+                    // Column k of the supernode has (width − k − 1) + below entries below
+                    // its diagonal: Σ_k (width − k − 1 + below)².
+                    (0..end[s] - begin[s])
+                        .map(|k| (width - k as f64 - 1.0 + below).powi(2))
+                        .sum::<f64>()
+                })
+                .sum()
+        }
+    }
+}
+
+/// The symbolic Cholesky analysis of `structure` with the ordering `choice`.
+fn symbolic_with(
+    pattern: &SparsityPattern,
+    structure: SymbolicSparseColMatRef<'_, usize>,
+    params: CholeskySymbolicParams<'_>,
+    choice: OrderingChoice,
+) -> Result<SymbolicCholesky<usize>, LinearError> {
+    match choice {
+        OrderingChoice::Amd | OrderingChoice::Cheaper => {
+            factorize_symbolic_cholesky(structure, Side::Upper, SymmetricOrdering::Amd, params)
+                .map_err(backend)
+        }
+        OrderingChoice::NestedDissection => {
+            let forward = super::ordering::nested_dissection(pattern);
+            let mut inverse = vec![0; forward.len()];
+            for (new, &old) in forward.iter().enumerate() {
+                inverse[old] = new;
+            }
+            let permutation = PermRef::new_checked(&forward, &inverse, forward.len());
+            factorize_symbolic_cholesky(
+                structure,
+                Side::Upper,
+                SymmetricOrdering::Custom(permutation),
+                params,
+            )
+            .map_err(backend)
+        }
+    }
+}
+
+/// Below this many unknowns the analysis keeps AMD without trying nested dissection (its
+/// factor is small either way, and the dissection's search would cost more than it saves).
+pub const DISSECTION_FROM: usize = 20_000;
+
+/// The symbolic analysis with the ordering `choice`; for [`OrderingChoice::Cheaper`], the one of
+/// least [`factorization_work`] among AMD and nested dissection (AMD alone below
+/// [`DISSECTION_FROM`] unknowns).
+fn ordered_analysis(
+    pattern: &SparsityPattern,
+    structure: SymbolicSparseColMatRef<'_, usize>,
+    params: CholeskySymbolicParams<'_>,
+    choice: OrderingChoice,
+) -> Result<SymbolicCholesky<usize>, LinearError> {
+    if choice != OrderingChoice::Cheaper {
+        return symbolic_with(pattern, structure, params, choice);
+    }
+    let amd = symbolic_with(pattern, structure, params, OrderingChoice::Amd)?;
+    if pattern.dimension() < DISSECTION_FROM {
+        return Ok(amd);
+    }
+    let dissection = symbolic_with(pattern, structure, params, OrderingChoice::NestedDissection)?;
+    Ok(
+        if factorization_work(&dissection) < factorization_work(&amd) {
+            dissection
+        } else {
+            amd
+        },
+    )
+}
+
+/// The ordering of [`SparseFactorization::analyze`]: [`OrderingChoice::Cheaper`], unless the
+/// environment variable `WRINKLE_ORDERING` is `amd` or `nd` (to measure one against the other
+/// on a whole run, docs/benchmarks.md; results agree to rounding).
+pub fn default_ordering() -> OrderingChoice {
+    match std::env::var("WRINKLE_ORDERING").as_deref() {
+        Ok("amd") => OrderingChoice::Amd,
+        Ok("nd") => OrderingChoice::NestedDissection,
+        _ => OrderingChoice::Cheaper,
+    }
+}
+
 impl SparseFactorization {
-    /// Symbolic analysis of `pattern`: approximate-minimum-degree ordering, elimination tree and
-    /// structure of the Cholesky factor (simplicial or supernodal, chosen by faer).
+    /// Symbolic analysis of `pattern`: fill-reducing ordering ([`default_ordering`]: the
+    /// cheaper of AMD and nested dissection), elimination tree and structure of the Cholesky
+    /// factor (simplicial or supernodal, chosen by faer).
     pub fn analyze(pattern: &SparsityPattern) -> Result<Self, LinearError> {
-        Self::analyze_with_threshold(pattern, SupernodalThreshold::AUTO)
+        Self::analyze_with(pattern, SupernodalThreshold::AUTO, default_ordering())
     }
 
     /// As [`SparseFactorization::analyze`], with an explicit choice between the simplicial and
@@ -109,6 +227,15 @@ impl SparseFactorization {
     pub fn analyze_with_threshold(
         pattern: &SparsityPattern,
         threshold: SupernodalThreshold,
+    ) -> Result<Self, LinearError> {
+        Self::analyze_with(pattern, threshold, default_ordering())
+    }
+
+    /// As [`SparseFactorization::analyze`], with the supernodal threshold and the ordering given.
+    pub fn analyze_with(
+        pattern: &SparsityPattern,
+        threshold: SupernodalThreshold,
+        ordering: OrderingChoice,
     ) -> Result<Self, LinearError> {
         let dimension = pattern.dimension();
         let mut factorization = Self {
@@ -138,17 +265,47 @@ impl SparseFactorization {
             supernodal_flop_ratio_threshold: threshold,
             ..Default::default()
         };
-        let symbolic =
-            factorize_symbolic_cholesky(structure, Side::Upper, SymmetricOrdering::Amd, params)
-                .map_err(backend)?;
+        let symbolic = ordered_analysis(pattern, structure, params, ordering)?;
         let requirement = StackReq::or(
             symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
             symbolic.factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default()),
         );
         factorization.factor_scratch = MemBuffer::try_new(requirement).map_err(backend)?;
         factorization.factor_values = vec![0.0; symbolic.len_val()];
-        factorization.symbolic = Some(symbolic);
+        factorization.symbolic = Some(std::sync::Arc::new(symbolic));
         Ok(factorization)
+    }
+
+    /// A new, unfactorised factorisation of the same pattern sharing this one's symbolic
+    /// analysis (ordering and factor structure): what [`SparseFactorization::analyze`] of the
+    /// same pattern gives, without repeating the analysis.
+    pub fn same_analysis(&self) -> Result<Self, LinearError> {
+        Ok(Self {
+            dimension: self.dimension,
+            col_ptr: self.col_ptr.clone(),
+            row_idx: self.row_idx.clone(),
+            symbolic: self.symbolic.clone(),
+            factor_values: vec![0.0; self.factor_values.len()],
+            factor_scratch: MemBuffer::try_new(match self.symbolic.as_deref() {
+                Some(symbolic) => StackReq::or(
+                    symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
+                    symbolic.factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default()),
+                ),
+                None => StackReq::empty(),
+            })
+            .map_err(backend)?,
+            lu: None,
+            kind: None,
+            negative_pivots: None,
+            refinement_values: Vec::new(),
+            solve_nanos: AtomicU64::new(0),
+        })
+    }
+
+    /// Estimated operations of one numeric factorisation ([`factorization_work`]; 0 before an
+    /// analysis).
+    pub fn work(&self) -> f64 {
+        self.symbolic.as_deref().map_or(0.0, factorization_work)
     }
 
     /// Dimension of the analysed pattern.

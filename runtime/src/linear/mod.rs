@@ -6,6 +6,7 @@
 pub mod eigen;
 pub mod error;
 pub mod factor;
+pub mod ordering;
 pub mod pattern;
 pub mod vector;
 

@@ -647,8 +647,9 @@ impl<M: EnergyModel> AnmRun<'_, M> {
         };
         let t = Instant::now();
         let problem = self.linearization.problem();
+        let same_analysis = self.linearization.factor().same_analysis();
         let statistics = &mut self.linearization.statistics;
-        let located = SparseFactorization::analyze(problem.assembler.pattern())
+        let located = same_analysis
             .map_err(SolveError::linear(
                 "locating a critical point: symbolic analysis",
             ))
@@ -946,7 +947,8 @@ fn predict_bifurcation<M: EnergyModel>(
         for (a, &b) in shifted.values.iter_mut().zip(&b.values) {
             *a += shift * b;
         }
-        let ahead = SparseFactorization::analyze(problem.assembler.pattern())
+        let ahead = factor
+            .same_analysis()
             .ok()
             .and_then(|mut shifted_factor| {
                 *factorizations += 1;
