@@ -154,6 +154,9 @@ fn recorded_direction(directory: &Path) -> Result<f64, Box<dyn std::error::Error
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let options = options()?;
+    // Ctrl-C stops the path after its current point and writes what was computed (as `wrinkle
+    // run` does); the next model does not start.
+    wrinkle::interrupt::install();
     std::fs::create_dir_all(&options.out)?;
     let mut lines = vec![
         "model,shear_mm,direction_deg,coherence,wavelength_mm,wrinkles,amplitude_mm,local_wavelength_mm,run_seconds".to_string(),
@@ -163,8 +166,19 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let (direction_degrees, seconds) = if options.measure_only {
             (recorded_direction(&options.out.join(model))?, 0.0)
         } else {
-            run(&scene, model, &options)?
+            match run(&scene, model, &options) {
+                Ok(done) => done,
+                // A path that stopped early (interrupted, failed past its threshold) has written
+                // the points it completed: measure those.
+                Err(error) => {
+                    eprintln!("{model}: {error}");
+                    (recorded_direction(&options.out.join(model))?, f64::NAN)
+                }
+            }
         };
+        if wrinkle::interrupt::requested() {
+            eprintln!("{model}: interrupted; its completed points are written");
+        }
         let direction = direction_degrees.to_radians();
         let region = central_region(&scene);
         for &shear in &options.shears {
