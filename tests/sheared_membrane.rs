@@ -20,8 +20,8 @@
 //!   the central region are the closed form's.
 //! * Past it, the plate's central wrinkles have the closed form's direction, and it turns with
 //!   the shear (measured on the path, `wrinkle::region_measures`): on the shipped 60 × 24
-//!   mesh at 0.08 and 0.1 mm (the study goes to 3 mm on 120 × 48; a 40 × 16 plate does not
-//!   resolve the wrinkles and its path stalls before 0.1 mm).
+//!   mesh at 0.08 mm in CI, to 0.2 mm opt-in (the study goes to 3 mm on 120 × 48; a 40 × 16
+//!   plate does not resolve the wrinkles and its path stalls before 0.1 mm).
 
 use std::path::{Path, PathBuf};
 use vtkio::model::{Attribute, DataSet, Piece, Vtk};
@@ -171,20 +171,21 @@ fn the_sheared_band_is_in_simple_shear_plus_stretch_away_from_its_free_sides() {
     let _ = std::fs::remove_dir_all(&out);
 }
 
-#[test]
-fn the_plates_central_wrinkles_turn_with_the_principal_tension_of_the_band() {
-    let out = scratch("path");
-    let shears = [0.08, 0.1];
+/// Runs the plate on the shipped 60 × 24 mesh to the last of `shears` and checks its central
+/// wrinkles at each against the band's principal compression (2°), turning with the shear.
+fn central_wrinkles_follow_the_band(test: &str, shears: &[f64]) {
+    let out = scratch(test);
+    let last = shears.iter().copied().fold(0.0, f64::max);
     let mut scene = scene();
     for setting in [
-        "output.vtu_loads=[0.08, 0.1]",
-        "solver.max_load=0.1",
-        "solver.max_amplitude_over_h=100",
-        "validity.accept=[\"all\"]",
-        "output.plots=false",
-        "output.surface=false",
+        format!("output.vtu_loads={shears:?}"),
+        format!("solver.max_load={last}"),
+        "solver.max_amplitude_over_h=100".to_string(),
+        "validity.accept=[\"all\"]".to_string(),
+        "output.plots=false".to_string(),
+        "output.surface=false".to_string(),
     ] {
-        scene.apply_override(setting).unwrap();
+        scene.apply_override(&setting).unwrap();
     }
     scene.validate().unwrap();
     let _ = wrinkle::run::run(&scene, &out.join("fvk-plate"), true);
@@ -193,8 +194,8 @@ fn the_plates_central_wrinkles_turn_with_the_principal_tension_of_the_band() {
         y: [0.25 * HEIGHT, 0.75 * HEIGHT],
     };
     let mut previous = 0.0;
-    for shear in shears {
-        let state = read_state(&out, "fvk-plate", shear, &shears)
+    for &shear in shears {
+        let state = read_state(&out, "fvk-plate", shear, shears)
             .unwrap_or_else(|| panic!("no state at {shear} mm"));
         let measures = measure_region(&state.snapshot(0.0), &region, 0.5)
             .unwrap_or_else(|| panic!("flat at {shear} mm"));
@@ -211,6 +212,20 @@ fn the_plates_central_wrinkles_turn_with_the_principal_tension_of_the_band() {
         previous = measures.direction_degrees;
     }
     let _ = std::fs::remove_dir_all(&out);
+}
+
+/// CI: just past the centre's onset of compression (0.0785 mm), 17 steps.
+#[test]
+fn the_plates_central_wrinkles_lie_along_the_principal_tension_of_the_band() {
+    central_wrinkles_follow_the_band("path", &[0.08]);
+}
+
+/// Opt-in (about a minute in release, more in debug): the direction turning from −29° to −38°
+/// between 0.08 and 0.2 mm. `cargo test --release --test sheared_membrane -- --ignored`.
+#[test]
+#[ignore = "heavy: the plate's path to 0.2 mm of shear"]
+fn the_plates_central_wrinkles_turn_with_the_principal_tension_of_the_band() {
+    central_wrinkles_follow_the_band("turning", &[0.08, 0.1, 0.15, 0.2]);
 }
 
 #[test]
