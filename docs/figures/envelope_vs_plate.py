@@ -116,9 +116,9 @@ def main(runs, envelope_csv, stem):
         axis.grid(True, which="both", alpha=0.3)
     axes[0].legend(fontsize=7, loc="best")
     figure.suptitle("Example 1: the plate's own error and the reference envelope's error "
-                    "against the plate, against run time\n(plate points: issue 30's run on a "
-                    "loaded host, wall times inflated 2–8×; envelope points: bench_example1.csv, "
-                    "a quiet host)", fontsize=10)
+                    "against the plate, against run time\n(plate points: `wrinkle bench --models "
+                    "fvk-plate`, bench_plate_example1.csv; envelope points: bench_example1.csv; "
+                    "both on a quiet host)", fontsize=10)
     figure.tight_layout()
     figure.savefig(f"{stem}.png", dpi=110)
     figure.savefig(f"{stem}.svg")
