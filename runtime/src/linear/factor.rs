@@ -173,6 +173,14 @@ fn symbolic_with(
     }
 }
 
+/// Scratch of one numeric factorisation, $`LL^\top`$ or $`LDL^\top`$, with this structure.
+fn numeric_scratch(symbolic: &SymbolicCholesky<usize>) -> StackReq {
+    StackReq::or(
+        symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
+        symbolic.factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default()),
+    )
+}
+
 /// Below this many unknowns the analysis keeps AMD without trying nested dissection (its
 /// factor is small either way, and the dissection's search would cost more than it saves).
 pub const DISSECTION_FROM: usize = 20_000;
@@ -266,11 +274,8 @@ impl SparseFactorization {
             ..Default::default()
         };
         let symbolic = ordered_analysis(pattern, structure, params, ordering)?;
-        let requirement = StackReq::or(
-            symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
-            symbolic.factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default()),
-        );
-        factorization.factor_scratch = MemBuffer::try_new(requirement).map_err(backend)?;
+        factorization.factor_scratch =
+            MemBuffer::try_new(numeric_scratch(&symbolic)).map_err(backend)?;
         factorization.factor_values = vec![0.0; symbolic.len_val()];
         factorization.symbolic = Some(std::sync::Arc::new(symbolic));
         Ok(factorization)
@@ -286,13 +291,11 @@ impl SparseFactorization {
             row_idx: self.row_idx.clone(),
             symbolic: self.symbolic.clone(),
             factor_values: vec![0.0; self.factor_values.len()],
-            factor_scratch: MemBuffer::try_new(match self.symbolic.as_deref() {
-                Some(symbolic) => StackReq::or(
-                    symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
-                    symbolic.factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default()),
-                ),
-                None => StackReq::empty(),
-            })
+            factor_scratch: MemBuffer::try_new(
+                self.symbolic
+                    .as_deref()
+                    .map_or(StackReq::empty(), numeric_scratch),
+            )
             .map_err(backend)?,
             lu: None,
             kind: None,

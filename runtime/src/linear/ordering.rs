@@ -298,31 +298,9 @@ pub fn nested_dissection(pattern: &SparsityPattern) -> Vec<usize> {
 mod tests {
     use super::*;
 
-    /// The pattern of a `k × k` grid of nodes with `dofs` unknowns each, coupled to the nodes
-    /// of the 3 × 3 block around them (bilinear elements).
-    fn grid(k: usize, dofs: usize) -> SparsityPattern {
-        let mut elements = Vec::new();
-        for i in 0..k - 1 {
-            for j in 0..k - 1 {
-                let nodes = [
-                    i * k + j,
-                    i * k + j + 1,
-                    (i + 1) * k + j,
-                    (i + 1) * k + j + 1,
-                ];
-                let list: Vec<Option<usize>> = nodes
-                    .iter()
-                    .flat_map(|&n| (0..dofs).map(move |d| Some(n * dofs + d)))
-                    .collect();
-                elements.push(list);
-            }
-        }
-        SparsityPattern::from_element_dofs(k * k * dofs, elements.iter().map(Vec::as_slice))
-    }
-
     #[test]
     fn nested_dissection_is_a_permutation_that_keeps_a_nodes_unknowns_together() {
-        let pattern = grid(40, 3);
+        let pattern = rectangle(40, 40, 3);
         let order = nested_dissection(&pattern);
         let mut sorted = order.clone();
         sorted.sort_unstable();
@@ -417,7 +395,7 @@ mod tests {
     #[test]
     fn disconnected_parts_are_all_ordered() {
         // Two separate grids side by side in one pattern.
-        let one = grid(20, 2);
+        let one = rectangle(20, 20, 2);
         let n = one.dimension();
         let mut elements: Vec<Vec<Option<usize>>> = Vec::new();
         for column in 0..n {
