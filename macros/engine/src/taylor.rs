@@ -183,6 +183,28 @@ impl TaylorProgram {
         }
     }
 
+    /// The recurrences of the program, in instruction order: `(register, x, y)` with the tape
+    /// slots whose history sum $`\sum_{j=1}^{k-1} x_j\,y_{k-j}`$ the register's order-$`k`$
+    /// rule needs — the operands of a product (twice the operand of a square), the divisor and
+    /// the quotient of a quotient or a reciprocal.
+    pub fn history_pairs(&self) -> Vec<(usize, usize, usize)> {
+        let slot = |register: usize| {
+            self.slot_of[register].expect("operands of recurrences are on the tape")
+        };
+        self.instructions
+            .iter()
+            .enumerate()
+            .filter_map(|(index, instruction)| match *instruction {
+                Instruction::Multiply(a, b) => Some((index, slot(a), slot(b))),
+                Instruction::Square(a) => Some((index, slot(a), slot(a))),
+                Instruction::Divide(_, b) | Instruction::Reciprocal(b) => {
+                    Some((index, slot(b), slot(index)))
+                }
+                _ => None,
+            })
+            .collect()
+    }
+
     /// Whether the residual is affine in the jet (no nonlinear operation at all).
     pub fn is_linear(&self) -> bool {
         !self.instructions.iter().any(|i| i.is_nonlinear())
@@ -435,8 +457,22 @@ fn start_value(instruction: Instruction, writer: &KernelWriter<'_>) -> TokenStre
 
 /// Order $`k`$ with a zero order-$`k`$ jet: the residual's coefficient in `out`, the slots'
 /// predicted $`x_k`$ on the tape.
+///
+/// The recurrences' sums over rows $`1..k-1`$ come first, all in one pass
+/// ([`histories`](../../wrinkle_runtime) of the runtime, into `h`); each nonlinear instruction
+/// then adds its terms with rows 0 and $`k`$.
 fn predict_body(program: &TaylorProgram, writer: &KernelWriter<'_>) -> TokenStream {
     let mut predict = TokenStream::new();
+    let pairs = program.history_pairs();
+    if !pairs.is_empty() {
+        let count = pairs.len();
+        let pairs = pairs.iter().map(|&(_, x, y)| quote!((#x, #y)));
+        predict.extend(quote! {
+            let h: [f64; #count] = ::wrinkle_runtime::series::recurrence::histories(
+                tape, stride, k, &[#(#pairs),*],
+            );
+        });
+    }
     for (index, instruction) in program.instructions.iter().enumerate() {
         let slot = program.slot_of[index];
         if program.zero_in_prediction[index] {
@@ -486,6 +522,14 @@ fn predict_value(
             quote!(#name)
         }
     };
+    let history = |index: usize| {
+        let p = program
+            .history_pairs()
+            .iter()
+            .position(|&(register, _, _)| register == index)
+            .expect("every recurrence has a history sum");
+        quote!(h[#p])
+    };
     match instruction {
         Instruction::Jet(_) => unreachable!("jet entries are zero in the prediction"),
         Instruction::Add(a, b) => {
@@ -514,21 +558,41 @@ fn predict_value(
             quote!(#a / #c)
         }
         Instruction::Multiply(a, b) => {
-            let (a, b) = (slot(a).unwrap(), slot(b).unwrap());
-            quote!(::wrinkle_runtime::series::recurrence::product(tape, stride, #a, #b, k))
+            // (a b)_k = h + a_0 b_k + a_k b_0.
+            let h = history(index);
+            let terms = [(slot(a).unwrap(), b), (slot(b).unwrap(), a)]
+                .into_iter()
+                .filter(|&(_, at_k)| !program.zero_in_prediction[at_k])
+                .map(|(at_0, at_k)| {
+                    let at_k = register_name(at_k);
+                    quote!(+ tape[#at_0] * #at_k)
+                });
+            quote!(#h #(#terms)*)
         }
         Instruction::Square(a) => {
-            let a = slot(a).unwrap();
-            quote!(::wrinkle_runtime::series::recurrence::square(tape, stride, #a, k))
+            // (a²)_k = h + 2 a_0 a_k.
+            let h = history(index);
+            if program.zero_in_prediction[a] {
+                h
+            } else {
+                let (at_0, at_k) = (slot(a).unwrap(), register_name(a));
+                quote!(#h + 2.0 * tape[#at_0] * #at_k)
+            }
         }
         Instruction::Divide(a, b) => {
+            // c = a / b: c_k = (a_k − h − b_k c_0) / b_0, h = Σ_{j=1}^{k−1} b_j c_{k−j}.
             let a = value_of(a);
-            let (b, c) = (slot(b).unwrap(), slot(index).unwrap());
-            quote!(::wrinkle_runtime::series::recurrence::quotient(#a, tape, stride, #b, #c, k))
+            let h = history(index);
+            let (b0, c0) = (slot(b).unwrap(), slot(index).unwrap());
+            let b_k = value_of(b);
+            quote!((#a - #h - #b_k * tape[#c0]) / tape[#b0])
         }
         Instruction::Reciprocal(a) => {
-            let (b, r) = (slot(a).unwrap(), slot(index).unwrap());
-            quote!(::wrinkle_runtime::series::recurrence::reciprocal(tape, stride, #b, #r, k))
+            // r = 1 / b: r_k = −(h + b_k r_0) / b_0.
+            let h = history(index);
+            let (b0, r0) = (slot(a).unwrap(), slot(index).unwrap());
+            let b_k = value_of(a);
+            quote!(-(#h + #b_k * tape[#r0]) / tape[#b0])
         }
     }
 }

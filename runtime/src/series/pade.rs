@@ -228,7 +228,8 @@ impl PadeApproximant {
     ///
     /// Returns `f64::INFINITY` when the criterion still holds $`10^8`$ times beyond the
     /// starting point and no pole bounds the step (the approximant is exact, e.g. a
-    /// low-degree polynomial series; the caller caps the step),
+    /// low-degree polynomial series; the caller caps the step: the ANM tries 1 024 times the
+    /// series' range and halves towards it until the end's residual passes),
     /// and `0.0` for an `epsilon` that is not positive and finite, a safety factor outside
     /// $`(0, 1]`$, or when no positive $`a`$ satisfies the criterion.
     #[must_use]

@@ -14,6 +14,38 @@ fn rows(tape: &[f64], stride: usize, k: usize) -> std::slice::ChunksExact<'_, f6
     tape[..(k + 1) * stride].chunks_exact(stride)
 }
 
+/// The *histories* of `P` recurrences at order $`k`$ on a tape of `stride` slots per row:
+/// $`h_p = \sum_{j=1}^{k-1} x_j\, y_{k-j}`$ for each slot pair $`(x, y) = `$ `pairs[p]` — the
+/// part of a product's $`(x\,y)_k`$ (or of a quotient's or reciprocal's recurrence) that reads
+/// rows $`1..k-1`$ only, i.e. what is known before any order-$`k`$ value of the sweep. The
+/// generated `taylor_predict` computes them all first and then adds the terms with row $`k`$
+/// and row 0 ($`x_0 y_k + x_k y_0`$) instruction by instruction.
+///
+/// One pass over the rows with `P` independent sums: a row pair is read once for all
+/// recurrences, and the sums do not wait on each other (one [`product`] at a time is a chain
+/// of dependent additions, latency-bound).
+#[inline(always)]
+pub fn histories<const P: usize>(
+    tape: &[f64],
+    stride: usize,
+    k: usize,
+    pairs: &[(usize, usize); P],
+) -> [f64; P] {
+    assert!(
+        pairs.iter().all(|&(x, y)| x < stride && y < stride),
+        "slot outside the row"
+    );
+    let mut sums = [0.0; P];
+    for j in 1..k {
+        let x = &tape[j * stride..][..stride];
+        let y = &tape[(k - j) * stride..][..stride];
+        for (sum, &(a, b)) in sums.iter_mut().zip(pairs) {
+            *sum += x[a] * y[b];
+        }
+    }
+    sums
+}
+
 /// $`(a\,b)_k = \sum_{j=0}^{k} a_j\, b_{k-j}`$ of slots `a` and `b` (rows $`0..=k`$ on the tape).
 #[inline(always)]
 pub fn product(tape: &[f64], stride: usize, a: usize, b: usize, k: usize) -> f64 {
@@ -68,6 +100,34 @@ pub fn reciprocal(tape: &[f64], stride: usize, b: usize, r: usize, k: usize) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn histories_are_the_products_without_their_first_and_last_terms() {
+        const S: usize = 3;
+        let series = [
+            [1.5, -0.5, 0.25, 2.0, -1.0, 0.75],
+            [2.0, 0.75, -1.25, 0.5, 0.125, -3.0],
+            [-1.0, 0.5, 4.0, -0.25, 1.0, 2.5],
+        ];
+        let mut tape = vec![0.0; series[0].len() * S];
+        for (s, coefficients) in series.iter().enumerate() {
+            for (j, &c) in coefficients.iter().enumerate() {
+                tape[j * S + s] = c;
+            }
+        }
+        let pairs = [(0, 1), (2, 2), (1, 0), (2, 0)];
+        for k in 0..series[0].len() {
+            let h = histories(&tape, S, k, &pairs);
+            for (p, &(x, y)) in pairs.iter().enumerate() {
+                let direct: f64 = (1..k).map(|j| series[x][j] * series[y][k - j]).sum();
+                assert_eq!(h[p], direct, "pair {p} at order {k}");
+                if k >= 1 {
+                    let full = h[p] + series[x][0] * series[y][k] + series[x][k] * series[y][0];
+                    assert!((full - product(&tape, S, x, y, k)).abs() <= 1e-14);
+                }
+            }
+        }
+    }
 
     #[test]
     fn recurrences_match_polynomial_arithmetic() {

@@ -341,6 +341,20 @@ impl StepApproximant<'_> {
     }
 }
 
+/// The first end a step tries, in multiples of the series' own range, when the Padé
+/// approximant's criterion ([`PadeApproximant::pade_step_length`]) holds without bound (its
+/// range is infinite: $`P_N`$ and $`P_{N-1}`$ agree to $`\varepsilon`$ as far as it looks, and
+/// no pole bounds the step). The end is then shortened towards the series' range, halving,
+/// until its residual passes ([`AnmRun::accept_end`]): at most 10 residual checks, not a step.
+///
+/// Before, such a step took the plain series' range: on the long strip's plate (example 2, at
+/// 112 × 64) the path's first four steps grew by only a factor of 2 each (the series' radius
+/// is proportional to the distance from the unloaded start, where the imperfection's response
+/// is a cubic membrane law), and 7 of its 21 steps went to reach 0.18 mm; with this bound the
+/// second step ends at 0.76 mm, and the path takes 16 steps (docs/benchmarks.md, "Round
+/// four").
+const UNBOUNDED_PADE_RANGE: f64 = 1024.0;
+
 /// Halvings of a series step whose end crossed a critical point before the crossing is taken
 /// as the path's own (a limit point or a perfect bifurcation, located at the next step).
 const MAX_CROSSING_HALVINGS: usize = 4;
@@ -464,8 +478,8 @@ impl<M: EnergyModel> AnmRun<'_, M> {
         let predicted = self.watch_bifurcation(step, &series, &u_hat);
         let (mut approximant, offered) = self.approximant(&series);
         let series_range = approximant.plain;
-        let (end, crossings_redone) = self.end_without_crossing(step, &mut approximant)?;
-        let evaluator = |a: f64| approximant.evaluate(a);
+        let (end, crossings_redone, interior) =
+            self.end_without_crossing(step, &mut approximant)?;
         let mut record = AnmStep {
             step,
             load_range: (self.state.load, end.state.load),
@@ -480,9 +494,7 @@ impl<M: EnergyModel> AnmRun<'_, M> {
             negative_pivots: self.negative_pivots,
             completed: true,
         };
-        if let Some(stop) =
-            self.dense_output(step, end.step_length, &evaluator, predicted, observer)
-        {
+        if let Some(stop) = self.dense_output(step, interior, predicted, observer) {
             // Stopped at an interior point: the step is logged up to there.
             record.load_range.1 = self.state.load;
             record.completed = false;
@@ -540,16 +552,21 @@ impl<M: EnergyModel> AnmRun<'_, M> {
     }
 
     /// The step's end ([`Self::accept_end`]), redone while it jumped over a critical point
-    /// (more negative pivots than the start): returns it with the number of redos.
+    /// (more negative pivots than the start): returns it with the number of redos and the
+    /// step's interior points up to it ([`Self::jumped_over_critical_point`]).
     fn end_without_crossing(
         &mut self,
         step: usize,
         approximant: &mut StepApproximant,
-    ) -> Result<(AcceptedEnd, usize), SolveError> {
+    ) -> Result<(AcceptedEnd, usize, Vec<InteriorPoint>), SolveError> {
         let mut end = self.accept_end(step, approximant)?;
         let mut halvings = 0;
         let mut crossings_redone = 0;
-        while self.jumped_over_critical_point(step, &end.state)? {
+        loop {
+            let (jumped, interior) = self.jumped_over_critical_point(step, &end, approximant)?;
+            if !jumped {
+                return Ok((end, crossings_redone, interior));
+            }
             // The end has more negative pivots than the start: the step crossed a critical
             // point. Near a nearly perfect bifurcation the singular part of the series is too
             // small for the step-length criteria, and a step can run along the fundamental
@@ -567,13 +584,12 @@ impl<M: EnergyModel> AnmRun<'_, M> {
             } else {
                 // Still crossing in a small fraction of the step: a critical point of the path
                 // itself (a limit point, or a perfect bifurcation); the next step locates it.
-                break;
+                return Ok((end, crossings_redone, interior));
             }
             self.linearization.statistics.rejected_steps += 1;
             crossings_redone += 1;
             end = self.accept_end(step, approximant)?;
         }
-        Ok((end, crossings_redone))
     }
 
     /// Assembles and factorises the tangent at the step's start; a change of its inertia
@@ -606,13 +622,29 @@ impl<M: EnergyModel> AnmRun<'_, M> {
     /// bifurcation). Otherwise the end's tangent and factorisation become the next step's (no
     /// extra cost). A failed factorisation at the end (singular: a critical point exactly
     /// there) counts as a jump. Without inertia (LU) nothing is checked.
+    ///
+    /// Also returns the step's interior points up to `end` ([`interior_points`]), evaluated
+    /// **while** the end's tangent is factorised ([`Linearization::factorize_spare_alongside`]):
+    /// the factorisation runs on one core, the interior points' residual checks on the other
+    /// (the values do not depend on it, each residual is the same sum on any number of
+    /// threads). On the plate of example 1 that hides 0.08 of a step's floor (10 residuals a
+    /// step).
     fn jumped_over_critical_point(
         &mut self,
         step: usize,
-        end: &PathState,
-    ) -> Result<bool, SolveError> {
+        end: &AcceptedEnd,
+        approximant: &StepApproximant,
+    ) -> Result<(bool, Vec<InteriorPoint>), SolveError> {
+        let problem = self.linearization.problem();
+        let count = self.options.interior_points;
+        let length = end.step_length;
+        let interior = || interior_points(problem, approximant, length, count);
+        let end = &end.state;
         let Some(before) = self.negative_pivots else {
-            return Ok(false);
+            let (points, seconds) = interior();
+            self.linearization.statistics.residual_assemblies += points.len();
+            self.linearization.statistics.residual_seconds += seconds;
+            return Ok((false, points));
         };
         let mut spare = match self.end_check.take() {
             Some(spare) => spare,
@@ -623,9 +655,15 @@ impl<M: EnergyModel> AnmRun<'_, M> {
                     "ANM step {step}: symbolic analysis for the end-point check"
                 )))?,
         };
-        let factorized =
-            self.linearization
-                .factorize_spare(&mut spare, &end.displacement, end.load);
+        let (factorized, (points, _), added) = self.linearization.factorize_spare_alongside(
+            &mut spare,
+            &end.displacement,
+            end.load,
+            interior,
+        );
+        // Counted as residual checks; their time only where it outlasted the factorisation.
+        self.linearization.statistics.residual_assemblies += points.len();
+        self.linearization.statistics.residual_seconds += added;
         let jumped = match (factorized, spare.negative_pivots()) {
             (Err(_), _) => true,
             (Ok(()), Some(after)) => after > before,
@@ -636,7 +674,7 @@ impl<M: EnergyModel> AnmRun<'_, M> {
             self.start_factorized = true;
         }
         self.end_check = Some(spare);
-        Ok(jumped)
+        Ok((jumped, points))
     }
 
     /// Linear buckling about the previous step's start (where the tangent was still positive
@@ -737,7 +775,8 @@ impl<M: EnergyModel> AnmRun<'_, M> {
         }
     }
 
-    /// What the step evaluates, and the range Padé offered (when enabled).
+    /// What the step evaluates, and the range Padé offered (when enabled). A Padé range
+    /// without bound becomes [`UNBOUNDED_PADE_RANGE`] times the series' range.
     fn approximant<'s>(&self, series: &'s PathSeries) -> (StepApproximant<'s>, Option<f64>) {
         let plain = series_step_length(series, self.options.series_tolerance);
         let pade = self
@@ -753,7 +792,17 @@ impl<M: EnergyModel> AnmRun<'_, M> {
         let approximant = StepApproximant {
             series,
             plain,
-            pade: pade.filter(|&(_, range)| range.is_finite() && range > plain),
+            pade: pade
+                .map(|(pade, range)| {
+                    let unbounded = !range.is_finite() && plain.is_finite();
+                    let range = if unbounded {
+                        UNBOUNDED_PADE_RANGE * plain
+                    } else {
+                        range
+                    };
+                    (pade, range)
+                })
+                .filter(|&(_, range)| range.is_finite() && range > plain),
         };
         (approximant, offered)
     }
@@ -869,21 +918,16 @@ impl<M: EnergyModel> AnmRun<'_, M> {
         })
     }
 
-    /// Interior points from the series; only those at the residual tolerance are reported.
+    /// The step's interior points ([`interior_points`]); only those at the residual tolerance
+    /// are reported.
     fn dense_output(
         &mut self,
         step: usize,
-        length: f64,
-        evaluator: &dyn Fn(f64) -> PathState,
+        interior: Vec<InteriorPoint>,
         predicted: Option<f64>,
         observer: &mut dyn FnMut(&PathEvent) -> PathControl,
     ) -> Option<PathStop> {
-        let count = self.options.interior_points;
-        for k in 1..=count {
-            let inner = evaluator(length * k as f64 / (count + 1) as f64);
-            let residual = self
-                .linearization
-                .relative_residual(&inner.displacement, inner.load);
+        for (inner, residual) in interior {
             if residual.is_nan() || residual > self.options.residual_tolerance {
                 continue;
             }
@@ -902,6 +946,28 @@ impl<M: EnergyModel> AnmRun<'_, M> {
         }
         None
     }
+}
+
+/// A point inside a step and its relative residual.
+type InteriorPoint = (PathState, f64);
+
+/// The `count` equally spaced interior points of a step of length `length` on `approximant`,
+/// each with its relative residual ([`Problem::relative_residual`]), and the seconds taken.
+fn interior_points<M: EnergyModel>(
+    problem: &Problem<M>,
+    approximant: &StepApproximant,
+    length: f64,
+    count: usize,
+) -> (Vec<InteriorPoint>, f64) {
+    let clock = Instant::now();
+    let points = (1..=count)
+        .map(|k| {
+            let inner = approximant.evaluate(length * k as f64 / (count + 1) as f64);
+            let residual = problem.relative_residual(&inner.displacement, inner.load);
+            (inner, residual)
+        })
+        .collect();
+    (points, clock.elapsed().as_secs_f64())
 }
 
 /// Smallest bifurcation load ahead, from linear buckling about `state` along the path tangent

@@ -150,11 +150,13 @@ impl<'a, M: EnergyModel> Linearization<'a, M> {
         result
     }
 
-    /// A second tangent and factorisation on this problem's pattern.
+    /// A second tangent and factorisation on this problem's pattern, sharing the current
+    /// factorisation's symbolic analysis ([`SparseFactorization::same_analysis`]: the ordering
+    /// is not computed again).
     pub fn spare(&self) -> Result<SpareTangent, LinearError> {
         Ok(SpareTangent {
             matrix: self.problem.new_matrix(),
-            factor: SparseFactorization::analyze(self.problem.assembler.pattern())?,
+            factor: self.factor.same_analysis()?,
         })
     }
 
@@ -170,6 +172,41 @@ impl<'a, M: EnergyModel> Linearization<'a, M> {
         let result = self.factorize(displacement, load);
         self.swap(spare);
         result
+    }
+
+    /// [`Self::factorize_spare`], with `alongside` run on the other core **during the
+    /// factorisation** (after the tangent's assembly, which uses every core): the numeric
+    /// factorisation is sequential, so a second, independent piece of work costs no wall time
+    /// while it is shorter. Returns the factorisation's result, `alongside`'s, and the wall
+    /// time `alongside` added beyond the factorisation's (0 when it finished first): the
+    /// counters stay a split of the path's wall time.
+    pub fn factorize_spare_alongside<T: Send>(
+        &mut self,
+        spare: &mut SpareTangent,
+        displacement: &[f64],
+        load: f64,
+        alongside: impl FnOnce() -> T + Send,
+    ) -> (Result<(), LinearError>, T, f64) {
+        let clock = Instant::now();
+        self.problem
+            .tangent_into(displacement, load, &mut spare.matrix);
+        self.statistics.tangent_assemblies += 1;
+        self.statistics.assembly_seconds += clock.elapsed().as_secs_f64();
+        let (matrix, factor) = (&spare.matrix, &mut spare.factor);
+        let both = Instant::now();
+        let (factorized, other) = rayon::join(
+            || {
+                let clock = Instant::now();
+                let result = factor.factorize(matrix);
+                (result, clock.elapsed().as_secs_f64())
+            },
+            alongside,
+        );
+        let wall = both.elapsed().as_secs_f64();
+        let (result, seconds) = factorized;
+        self.statistics.factorizations += 1;
+        self.statistics.factorization_seconds += seconds;
+        (result.map(|_| ()), other, (wall - seconds).max(0.0))
     }
 
     /// Makes the tangent and factorisation in `spare` the current ones (and the current ones
