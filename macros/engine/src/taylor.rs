@@ -464,6 +464,11 @@ fn start_value(instruction: Instruction, writer: &KernelWriter<'_>) -> TokenStre
 fn predict_body(program: &TaylorProgram, writer: &KernelWriter<'_>) -> TokenStream {
     let mut predict = TokenStream::new();
     let pairs = program.history_pairs();
+    // The position of each recurrence's sum in `h`, by instruction.
+    let mut history = vec![None; program.instructions.len()];
+    for (p, &(register, _, _)) in pairs.iter().enumerate() {
+        history[register] = Some(p);
+    }
     if !pairs.is_empty() {
         let count = pairs.len();
         let pairs = pairs.iter().map(|&(_, x, y)| quote!((#x, #y)));
@@ -482,7 +487,7 @@ fn predict_body(program: &TaylorProgram, writer: &KernelWriter<'_>) -> TokenStre
             continue;
         }
         let x = register_name(index);
-        let value = predict_value(program, index, *instruction, writer);
+        let value = predict_value(program, index, *instruction, &history, writer);
         predict.extend(quote!(let #x: f64 = #value;));
         if let Some(s) = slot {
             predict.extend(quote!(tape[k * stride + #s] = #x;));
@@ -505,11 +510,12 @@ fn predict_body(program: &TaylorProgram, writer: &KernelWriter<'_>) -> TokenStre
 
 /// The predicted order-$`k`$ value of instruction `index` (not zero in the prediction):
 /// linear operations propagate order-$`k`$ values, nonlinear ones run their recurrence over
-/// the tape.
+/// the tape; `history[index]` is the position of a recurrence's history sum in `h`.
 fn predict_value(
     program: &TaylorProgram,
     index: usize,
     instruction: Instruction,
+    history: &[Option<usize>],
     writer: &KernelWriter<'_>,
 ) -> TokenStream {
     let real = |c: NodeId| writer.reference(c);
@@ -523,11 +529,7 @@ fn predict_value(
         }
     };
     let history = |index: usize| {
-        let p = program
-            .history_pairs()
-            .iter()
-            .position(|&(register, _, _)| register == index)
-            .expect("every recurrence has a history sum");
+        let p = history[index].expect("every recurrence has a history sum");
         quote!(h[#p])
     };
     match instruction {

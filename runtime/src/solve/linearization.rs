@@ -95,16 +95,28 @@ impl<'a, M: EnergyModel> Linearization<'a, M> {
     /// Assembles and factorises $`K_t(U, \lambda)`$: one tangent assembly and one
     /// factorisation counted (a failed factorisation too: its work was done), with their times.
     pub fn factorize(&mut self, displacement: &[f64], load: f64) -> Result<(), LinearError> {
+        self.assemble(displacement, load, None);
+        let (result, seconds) = timed_factorize(self.factor, &self.matrix);
+        self.count_factorization(seconds);
+        result
+    }
+
+    /// Assembles $`K_t(U, \lambda)`$ into `spare`'s matrix, or the current one without it;
+    /// one tangent assembly counted, with its time.
+    fn assemble(&mut self, displacement: &[f64], load: f64, spare: Option<&mut SpareTangent>) {
         let clock = Instant::now();
-        self.problem
-            .tangent_into(displacement, load, &mut self.matrix);
+        let matrix = match spare {
+            Some(spare) => &mut spare.matrix,
+            None => &mut self.matrix,
+        };
+        self.problem.tangent_into(displacement, load, matrix);
         self.statistics.tangent_assemblies += 1;
         self.statistics.assembly_seconds += clock.elapsed().as_secs_f64();
-        let clock = Instant::now();
-        let result = self.factor.factorize(&self.matrix);
+    }
+
+    fn count_factorization(&mut self, seconds: f64) {
         self.statistics.factorizations += 1;
-        self.statistics.factorization_seconds += clock.elapsed().as_secs_f64();
-        result.map(|_| ())
+        self.statistics.factorization_seconds += seconds;
     }
 
     /// Solves $`K_t x = b`$ in place with the current factorisation.
@@ -161,20 +173,7 @@ impl<'a, M: EnergyModel> Linearization<'a, M> {
     }
 
     /// [`Self::factorize`] into `spare`, leaving the current tangent and factorisation as they
-    /// are; counted the same way.
-    pub fn factorize_spare(
-        &mut self,
-        spare: &mut SpareTangent,
-        displacement: &[f64],
-        load: f64,
-    ) -> Result<(), LinearError> {
-        self.swap(spare);
-        let result = self.factorize(displacement, load);
-        self.swap(spare);
-        result
-    }
-
-    /// [`Self::factorize_spare`], with `alongside` run on the other core **during the
+    /// are, counted the same way, with `alongside` run on the other core **during the
     /// factorisation** (after the tangent's assembly, which uses every core): the numeric
     /// factorisation is sequential, so a second, independent piece of work costs no wall time
     /// while it is shorter. Returns the factorisation's result, `alongside`'s, and the wall
@@ -187,38 +186,31 @@ impl<'a, M: EnergyModel> Linearization<'a, M> {
         load: f64,
         alongside: impl FnOnce() -> T + Send,
     ) -> (Result<(), LinearError>, T, f64) {
-        let clock = Instant::now();
-        self.problem
-            .tangent_into(displacement, load, &mut spare.matrix);
-        self.statistics.tangent_assemblies += 1;
-        self.statistics.assembly_seconds += clock.elapsed().as_secs_f64();
+        self.assemble(displacement, load, Some(&mut *spare));
         let (matrix, factor) = (&spare.matrix, &mut spare.factor);
         let both = Instant::now();
-        let (factorized, other) = rayon::join(
-            || {
-                let clock = Instant::now();
-                let result = factor.factorize(matrix);
-                (result, clock.elapsed().as_secs_f64())
-            },
-            alongside,
-        );
+        let ((result, seconds), other) = rayon::join(|| timed_factorize(factor, matrix), alongside);
         let wall = both.elapsed().as_secs_f64();
-        let (result, seconds) = factorized;
-        self.statistics.factorizations += 1;
-        self.statistics.factorization_seconds += seconds;
-        (result.map(|_| ()), other, (wall - seconds).max(0.0))
+        self.count_factorization(seconds);
+        (result, other, (wall - seconds).max(0.0))
     }
 
     /// Makes the tangent and factorisation in `spare` the current ones (and the current ones
     /// the spare).
     pub fn adopt(&mut self, spare: &mut SpareTangent) {
-        self.swap(spare);
-    }
-
-    fn swap(&mut self, spare: &mut SpareTangent) {
         std::mem::swap(&mut self.matrix, &mut spare.matrix);
         std::mem::swap(self.factor, &mut spare.factor);
     }
+}
+
+/// Factorises `matrix` into `factor` (uncounted), with the seconds it took.
+fn timed_factorize(
+    factor: &mut SparseFactorization,
+    matrix: &SparseMatrix,
+) -> (Result<(), LinearError>, f64) {
+    let clock = Instant::now();
+    let result = factor.factorize(matrix).map(|_| ());
+    (result, clock.elapsed().as_secs_f64())
 }
 
 /// A tangent and its factorisation kept beside a [`Linearization`]'s
