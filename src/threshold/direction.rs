@@ -30,6 +30,7 @@
 //! envelope (free phase) and the pure membrane take the direction with the wavenumber from
 //! `model.wavenumber_model`, as they take its $`Q`$.
 
+use super::steps::threshold_buckling;
 use super::wavenumber_model::WavenumberModel;
 use super::{
     Threshold, ThresholdOptions, fixed_direction_threshold, mode_wavelength, threshold_checks,
@@ -44,7 +45,7 @@ use wrinkle_runtime::linear::factor::SparseFactorization;
 use wrinkle_runtime::model::{Derivative, JetEntry};
 use wrinkle_runtime::problem::Problem;
 use wrinkle_runtime::solve::brent::{ScalarMinimum, local_parabolic_minimum};
-use wrinkle_runtime::solve::buckling::{LinearBucklingOptions, linear_buckling};
+use wrinkle_runtime::solve::buckling::linear_buckling;
 use wrinkle_runtime::solve::linearization::{factorize_tangent, load_tangent};
 use wrinkle_runtime::solve::newton::{NewtonOptions, newton};
 use wrinkle_runtime::solve::wavenumber::{
@@ -463,8 +464,7 @@ impl<M: EnergyModel> DirectionSearch<'_, M> {
             set_model_parameter(self.problem, WAVENUMBER_PARAMETER, q).ok()?;
             self.analyses += 1;
             let buckling =
-                linear_buckling(self.problem, self.factor, &LinearBucklingOptions::default())
-                    .ok()?;
+                linear_buckling(self.problem, self.factor, &threshold_buckling(0.0)).ok()?;
             return buckling.critical_loads.first().copied();
         }
         let q = self.wavenumber;
