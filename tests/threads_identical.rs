@@ -103,6 +103,12 @@ fn run_on_one_and_two_threads_writes_identical_files() {
             .iter()
             .all(|s| s["completed"] == true)
     );
+    // The bifurcation prediction runs on a thread of its own beside the next step's series
+    // with 2 workers and in place with 1: the same load in the same step's record.
+    assert!(
+        steps.iter().any(|s| s["predicted_bifurcation"].is_number()),
+        "no bifurcation prediction on the path"
+    );
     assert_eq!(summary, json_file(&directories[1].join("summary.json")));
     let _ = std::fs::remove_dir_all(&root);
 }

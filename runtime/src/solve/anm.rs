@@ -35,8 +35,8 @@
 //! step's start along its path tangent. On a path that stays stable — the imperfect path that
 //! turns smoothly onto the wrinkled branch — the first step whose series shows a geometric tail
 //! (the ANM signature of a nearby singularity) predicts the bifurcation load by one such analysis
-//! with its own factorised tangent; the bifurcation is reported at the step whose end passes
-//! it. An eigen-solver failure never stops the path and is never swallowed: it is kept in
+//! with its own factorised tangent, on a thread of its own beside the next step's series; the
+//! bifurcation is reported at the step whose end passes it. An eigen-solver failure never stops the path and is never swallowed: it is kept in
 //! [`PathResult::warnings`].
 
 use super::arc_length::{ArcCorrectorOptions, ArcLengthConstraint, correct_on_arc};
@@ -374,7 +374,25 @@ pub fn follow_path_anm<M: EnergyModel>(
     observer: &mut dyn FnMut(&PathEvent) -> PathControl,
     steps_log: &mut Vec<AnmStep>,
 ) -> PathResult {
+    std::thread::scope(|scope| {
+        follow_path_in(scope, problem, start, factor, options, observer, steps_log)
+    })
+}
+
+/// [`follow_path_anm`] inside the scope its bifurcation prediction may run in
+/// ([`AnmRun::watch_bifurcation`]).
+fn follow_path_in<'scope, 'a: 'scope, M: EnergyModel>(
+    scope: &'scope std::thread::Scope<'scope, 'a>,
+    problem: &'a Problem<M>,
+    start: PathState,
+    factor: &'a mut SparseFactorization,
+    options: &'a AnmOptions,
+    observer: &mut dyn FnMut(&PathEvent) -> PathControl,
+    steps_log: &mut Vec<AnmStep>,
+) -> PathResult {
     let mut run = AnmRun {
+        scope,
+        pending: None,
         linearization: Linearization::new(problem, factor),
         options,
         begin: Instant::now(),
@@ -403,20 +421,42 @@ pub fn follow_path_anm<M: EnergyModel>(
         predicted_bifurcation: None,
     };
     if observer(&event) == PathControl::Stop {
-        return run.finish(PathStop::Observer);
+        return run.finish(PathStop::Observer, steps_log);
     }
     for step in 1..=options.max_steps {
         match run.step(step, observer, steps_log) {
             Ok(None) => {}
-            Ok(Some(stop)) => return run.finish(stop),
-            Err(error) => return run.finish(PathStop::Failed(error)),
+            Ok(Some(stop)) => return run.finish(stop, steps_log),
+            Err(error) => return run.finish(PathStop::Failed(error), steps_log),
         }
     }
-    run.finish(PathStop::MaxSteps)
+    run.finish(PathStop::MaxSteps, steps_log)
+}
+
+/// What a bifurcation prediction gives back from its thread.
+struct PredictionOutcome {
+    load: Result<f64, SolveError>,
+    factorizations: usize,
+}
+
+/// A bifurcation prediction running on a thread of its own beside the path
+/// ([`AnmRun::watch_bifurcation`]).
+struct PendingPrediction<'scope> {
+    /// The step about whose start it predicts.
+    step: usize,
+    /// Where that step's record goes in the steps' log.
+    record: usize,
+    /// The load at that start (for the warning when it fails).
+    load: f64,
+    handle: std::thread::ScopedJoinHandle<'scope, PredictionOutcome>,
 }
 
 /// The state of one ANM path.
-struct AnmRun<'a, M: EnergyModel> {
+struct AnmRun<'scope, 'a: 'scope, M: EnergyModel> {
+    /// Where a bifurcation prediction runs beside the path.
+    scope: &'scope std::thread::Scope<'scope, 'a>,
+    /// The bifurcation prediction under way, if any.
+    pending: Option<PendingPrediction<'scope>>,
     /// The tangent at the step's start, its factorisation and the path's work counters.
     linearization: Linearization<'a, M>,
     options: &'a AnmOptions,
@@ -450,8 +490,9 @@ struct AcceptedEnd {
     hit_max_load: bool,
 }
 
-impl<M: EnergyModel> AnmRun<'_, M> {
-    fn finish(self, stop: PathStop) -> PathResult {
+impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
+    fn finish(mut self, stop: PathStop, steps_log: &mut [AnmStep]) -> PathResult {
+        self.collect_prediction(steps_log);
         let factor_nonzeros = self.linearization.factor().factor_nnz();
         let mut statistics = self.linearization.statistics;
         statistics.total_seconds = self.begin.elapsed().as_secs_f64();
@@ -473,9 +514,11 @@ impl<M: EnergyModel> AnmRun<'_, M> {
         observer: &mut dyn FnMut(&PathEvent) -> PathControl,
         steps_log: &mut Vec<AnmStep>,
     ) -> Result<Option<PathStop>, SolveError> {
-        self.factorize_tangent(step)?;
+        self.factorize_tangent(step, steps_log)?;
         let (series, u_hat) = self.series()?;
-        let predicted = self.watch_bifurcation(step, &series, &u_hat);
+        // One started at an earlier step has had this series beside it.
+        self.collect_prediction(steps_log);
+        let predicted = self.watch_bifurcation(step, &series, &u_hat, steps_log.len());
         let (mut approximant, offered) = self.approximant(&series);
         let series_range = approximant.plain;
         let (end, crossings_redone, interior) =
@@ -595,7 +638,11 @@ impl<M: EnergyModel> AnmRun<'_, M> {
     /// Assembles and factorises the tangent at the step's start; a change of its inertia
     /// (negative pivots of $`LDL^\top`$, none after $`LL^\top`$) reveals a critical point crossed
     /// during the previous step, which is then located.
-    fn factorize_tangent(&mut self, step: usize) -> Result<(), SolveError> {
+    fn factorize_tangent(
+        &mut self,
+        step: usize,
+        steps_log: &mut [AnmStep],
+    ) -> Result<(), SolveError> {
         if !std::mem::take(&mut self.start_factorized) {
             let state = &self.state;
             self.linearization
@@ -608,10 +655,13 @@ impl<M: EnergyModel> AnmRun<'_, M> {
         let negative = self.linearization.negative_pivots();
         if let (Some(before), Some(now)) = (self.negative_pivots, negative)
             && now > before
-            && self.bifurcation.is_none()
             && self.options.predict_bifurcation
         {
-            self.locate_crossed_critical_point(step - 1);
+            // A prediction under way may have passed the bifurcation already.
+            self.collect_prediction(steps_log);
+            if self.bifurcation.is_none() {
+                self.locate_crossed_critical_point(step - 1);
+            }
         }
         self.negative_pivots = negative;
         Ok(())
@@ -708,7 +758,7 @@ impl<M: EnergyModel> AnmRun<'_, M> {
                     problem,
                     &start,
                     &u_hat,
-                    &factor,
+                    Unshifted::Factorized(&factor),
                     &tangent,
                     None,
                     None,
@@ -726,53 +776,149 @@ impl<M: EnergyModel> AnmRun<'_, M> {
 
     /// When the series first shows a geometric tail (a singularity within reach: the ANM
     /// signature of a nearby bifurcation or of the sharp turn of an imperfect path), one linear
-    /// buckling analysis about the step's start predicts the bifurcation load. Returns it for
-    /// the step where it was computed.
+    /// buckling analysis about the step's start predicts the bifurcation load.
+    ///
+    /// Shifted towards a guess ([`predict_bifurcation`]), it runs on a thread of its own beside
+    /// the path ([`PendingPrediction`]) with a copy of the tangent and a factorisation of its
+    /// own: its shifted factorisation and eigen-solve take the core the next step's series
+    /// solves leave idle (0.6–2.2 s of the path on example 1's plate and envelope and on the
+    /// strip's plate). It is collected after the next step's series
+    /// ([`Self::collect_prediction`]), or before that when a crossed critical point or the
+    /// path's end needs it; what it gives does not depend on when. When the shifted analysis
+    /// does not decide, the thread factorises the tangent itself (one factorisation more than
+    /// in place). Unshifted, or with one worker thread, it runs in place with the path's
+    /// factorisation. Returns the load when it ran in place.
     fn watch_bifurcation(
         &mut self,
         step: usize,
         series: &PathSeries,
         u_hat: &[f64],
+        logged: usize,
     ) -> Option<f64> {
         if !self.options.predict_bifurcation
             || self.prediction.is_some()
+            || self.pending.is_some()
             || series.load[1] <= 0.0
             || self.negative_pivots.is_some_and(|n| n > 0)
             || geometric_ratio(series).is_none()
         {
             return None;
         }
-        let t = Instant::now();
+        let clock = Instant::now();
+        let problem = self.linearization.problem();
+        let shifted = prediction_shift(self.options.bifurcation_load_guess, self.state.load);
+        if shifted.is_none() || rayon::current_num_threads() < 2 {
+            // In place, with the path's factorisation: an unshifted prediction needs no other.
+            let mut factorizations = 0;
+            let predicted = predict_bifurcation(
+                problem,
+                &self.state,
+                u_hat,
+                Unshifted::Factorized(self.linearization.factor()),
+                self.linearization.tangent(),
+                self.options.bifurcation_mode_guess.clone(),
+                self.options.bifurcation_load_guess,
+                &mut factorizations,
+            );
+            let statistics = &mut self.linearization.statistics;
+            statistics.factorizations += factorizations;
+            statistics.bifurcation_seconds += clock.elapsed().as_secs_f64();
+            return match predicted {
+                Ok(load) => {
+                    self.prediction = Some(load);
+                    Some(load)
+                }
+                Err(error) => {
+                    self.prediction_failed(step, self.state.load, &error);
+                    None
+                }
+            };
+        }
+        let analysis = match self.linearization.factor().same_analysis() {
+            Ok(analysis) => analysis,
+            Err(error) => {
+                self.prediction_failed(
+                    step,
+                    self.state.load,
+                    &SolveError::linear("bifurcation prediction: symbolic analysis")(error),
+                );
+                return None;
+            }
+        };
+        let tangent = self.linearization.tangent().clone();
+        let state = self.state.clone();
+        let u_hat = u_hat.to_vec();
         let start = self.options.bifurcation_mode_guess.clone();
-        let mut factorizations = 0;
-        let predicted = predict_bifurcation(
-            self.linearization.problem(),
-            &self.state,
-            u_hat,
-            self.linearization.factor(),
-            self.linearization.tangent(),
-            start,
-            self.options.bifurcation_load_guess,
-            &mut factorizations,
-        );
+        let guess = self.options.bifurcation_load_guess;
+        let predict = move || {
+            let mut factorizations = 0;
+            let load = predict_bifurcation(
+                problem,
+                &state,
+                &u_hat,
+                Unshifted::Analysed(Box::new(analysis)),
+                &tangent,
+                start,
+                guess,
+                &mut factorizations,
+            );
+            PredictionOutcome {
+                load,
+                factorizations,
+            }
+        };
+        self.linearization.statistics.bifurcation_seconds += clock.elapsed().as_secs_f64();
+        self.pending = Some(PendingPrediction {
+            step,
+            record: logged,
+            load: self.state.load,
+            handle: self.scope.spawn(predict),
+        });
+        None
+    }
+
+    /// Waits for the prediction under way, if any, and takes what it gives: its load (also
+    /// into the record of the step it was made at, once logged), the first logged step since then
+    /// whose end passes it as the bifurcation's, or a warning when it failed. The time waited
+    /// counts as the prediction's. Returns its load.
+    fn collect_prediction(&mut self, steps_log: &mut [AnmStep]) -> Option<f64> {
+        let pending = self.pending.take()?;
+        let clock = Instant::now();
+        let outcome = match pending.handle.join() {
+            Ok(outcome) => outcome,
+            Err(panic) => std::panic::resume_unwind(panic),
+        };
         let statistics = &mut self.linearization.statistics;
-        statistics.factorizations += factorizations;
-        statistics.bifurcation_seconds += t.elapsed().as_secs_f64();
-        match predicted {
+        statistics.bifurcation_seconds += clock.elapsed().as_secs_f64();
+        statistics.factorizations += outcome.factorizations;
+        match outcome.load {
             Ok(load) => {
                 self.prediction = Some(load);
+                for record in steps_log.iter_mut().skip(pending.record) {
+                    if record.step == pending.step {
+                        record.predicted_bifurcation = Some(load);
+                    }
+                    let (from, to) = record.load_range;
+                    if record.completed && self.bifurcation.is_none() && to >= load && from < load {
+                        self.bifurcation = Some((load, record.step));
+                    }
+                }
                 Some(load)
             }
             Err(error) => {
-                self.warnings.push(format!(
-                    "step {step}: bifurcation prediction by linear buckling at load {:.6e} failed: {error}",
-                    self.state.load
-                ));
-                // Do not retry at every step.
-                self.prediction = Some(f64::INFINITY);
+                self.prediction_failed(pending.step, pending.load, &error);
                 None
             }
         }
+    }
+
+    /// Keeps the failure of the prediction at `step` (from `load`) as a warning; it is not
+    /// retried at every step.
+    fn prediction_failed(&mut self, step: usize, load: f64, error: &SolveError) {
+        self.warnings.push(format!(
+            "step {step}: bifurcation prediction by linear buckling at load {load:.6e} failed: {error}"
+        ));
+        self.prediction = Some(f64::INFINITY);
     }
 
     /// What the step evaluates, and the range Padé offered (when enabled). A Padé range
@@ -970,11 +1116,30 @@ fn interior_points<M: EnergyModel>(
     (points, clock.elapsed().as_secs_f64())
 }
 
+/// The shift $`\mu_s`$ of a bifurcation prediction about `load` towards `load_guess`
+/// ([`predict_bifurcation`]); `None` without a guess ahead.
+fn prediction_shift(load_guess: Option<f64>, load: f64) -> Option<f64> {
+    load_guess
+        .map(|guess| LOCAL_SHIFT * (guess - load))
+        .filter(|shift| shift.is_finite() && *shift > 0.0)
+}
+
+/// The factorisation of $`K_t`$ a bifurcation prediction falls back on ([`predict_bifurcation`]).
+enum Unshifted<'f> {
+    /// $`K_t`$ factorised already (the one at a previous step's start).
+    Factorized(&'f SparseFactorization),
+    /// An unfactorised factorisation of the same analysis ([`SparseFactorization::same_analysis`]):
+    /// the shifted tangent's, then $`K_t`$'s when the shifted analysis does not decide (one
+    /// factorisation more, counted) — what a prediction on its own thread uses, the path's own
+    /// factorisation being the next step's by then.
+    Analysed(Box<SparseFactorization>),
+}
+
 /// Smallest bifurcation load ahead, from linear buckling about `state` along the path tangent
 /// $`dU/d\lambda = \hat U`$: $`(K_t + \mu\,\partial_\lambda K_t)\varphi = 0`$,
-/// $`\lambda_b = \lambda + \mu`$. `tangent` must be $`K_t`$ at `state` and `factor` its
-/// factorisation; `start` warm-starts the eigen-solver. The factorisations it makes are added
-/// to `factorizations`.
+/// $`\lambda_b = \lambda + \mu`$. `tangent` must be $`K_t`$ at `state` and `unshifted` its
+/// factorisation or one to make it in; `start` warm-starts the eigen-solver. The
+/// factorisations it makes are added to `factorizations`.
 ///
 /// **Shifted towards a guess.** With a guess $`\lambda_g > \lambda`$ of the bifurcation load
 /// (the threshold of a linear buckling analysis), the eigen-solve is first done about
@@ -992,7 +1157,7 @@ fn predict_bifurcation<M: EnergyModel>(
     problem: &Problem<M>,
     state: &PathState,
     u_hat: &[f64],
-    factor: &SparseFactorization,
+    unshifted: Unshifted<'_>,
     tangent: &SparseMatrix,
     start: Option<Vec<f64>>,
     load_guess: Option<f64>,
@@ -1005,30 +1170,50 @@ fn predict_bifurcation<M: EnergyModel>(
         start,
         ..BucklingOptions::default()
     };
-    let shift = load_guess
-        .map(|guess| LOCAL_SHIFT * (guess - state.load))
-        .filter(|shift| shift.is_finite() && *shift > 0.0);
+    let shift = prediction_shift(load_guess, state.load);
+    let (factorized, mut spare) = match unshifted {
+        Unshifted::Factorized(factor) => (Some(factor), None),
+        Unshifted::Analysed(factor) => (None, Some(*factor)),
+    };
     if let Some(shift) = shift {
         let mut shifted = tangent.clone();
         for (a, &b) in shifted.values.iter_mut().zip(&b.values) {
             *a += shift * b;
         }
-        let ahead = factor
-            .same_analysis()
-            .ok()
-            .and_then(|mut shifted_factor| {
-                *factorizations += 1;
-                shifted_factor.factorize(&shifted).ok()?;
-                (shifted_factor.negative_pivots() == Some(0)).then_some(shifted_factor)
-            })
-            .and_then(|shifted_factor| {
-                smallest_positive_buckling(&shifted, &shifted_factor, &b, &options).ok()
-            })
+        let shifted_factor = match spare.take() {
+            Some(factor) => Some(factor),
+            None => factorized.and_then(|factor| factor.same_analysis().ok()),
+        };
+        if let Some(mut shifted_factor) = shifted_factor {
+            *factorizations += 1;
+            let ahead = (shifted_factor.factorize(&shifted).is_ok()
+                && shifted_factor.negative_pivots() == Some(0))
+            .then(|| smallest_positive_buckling(&shifted, &shifted_factor, &b, &options).ok())
+            .flatten()
             .and_then(|solution| solution.modes.first().map(|m| m.load_factor));
-        if let Some(nu) = ahead {
-            return Ok(state.load + shift + nu);
+            if let Some(nu) = ahead {
+                return Ok(state.load + shift + nu);
+            }
+            spare = Some(shifted_factor);
         }
     }
+    let owned;
+    let factor = match (factorized, spare) {
+        (Some(factor), _) => factor,
+        (None, Some(mut factor)) => {
+            *factorizations += 1;
+            factor.factorize(tangent).map_err(SolveError::linear(
+                "bifurcation prediction: factorisation of the tangent",
+            ))?;
+            owned = factor;
+            &owned
+        }
+        (None, None) => {
+            return Err(SolveError::Buckling(
+                "bifurcation prediction: no factorisation of the tangent".into(),
+            ));
+        }
+    };
     let solution = smallest_positive_buckling(tangent, factor, &b, &options)
         .map_err(SolveError::linear("bifurcation prediction: eigen-solver"))?;
     solution
