@@ -16,7 +16,7 @@ pub mod recurrence;
 mod scalar_series;
 mod vector_series;
 
-pub use pade::{PADE_POLE_SAFETY_FACTOR, PadeApproximant, SPURIOUS_RESIDUE};
+pub use pade::{GramSchmidt, PADE_POLE_SAFETY_FACTOR, PadeApproximant, SPURIOUS_RESIDUE};
 pub use scalar_series::{MAX_SERIES_LEN, Series};
 pub use vector_series::{
     GEOMETRIC_COSINE_THRESHOLD, GEOMETRIC_RATIO_TOLERANCE, PathSeries, geometric_ratio,

@@ -80,6 +80,9 @@ pub struct PadeApproximant {
     denominator: Vec<f64>,
     lower_denominator: Vec<f64>,
     coefficient_norms: Vec<f64>,
+    /// The Gram–Schmidt coordinates `alpha[k][j]` $`= \alpha_{k+1, j+1}`$ of the coefficients
+    /// (lower triangular): the norms of combinations ([`Self::combination_norm`]).
+    alpha: Vec<Vec<f64>>,
 }
 
 impl PadeApproximant {
@@ -96,14 +99,55 @@ impl PadeApproximant {
                 found: order,
             });
         }
-        let combined = |k: usize| -> Vec<f64> {
-            let mut vector = series.displacement[k].clone();
-            vector.push(series.load[k]);
-            vector
-        };
-        let origin = combined(0);
-        let coefficients: Vec<Vec<f64>> = (1..=order).map(combined).collect();
-        let projections = gram_schmidt(&coefficients);
+        let mut orthogonalized = GramSchmidt::new(order);
+        for k in 1..=order {
+            orthogonalized.push(&series.displacement[k], series.load[k]);
+        }
+        Self::orthogonalized(series, orthogonalized)
+    }
+
+    /// [`Self::new`] with the Gram–Schmidt of the coefficients done already, one at a time as
+    /// the series produced them ([`GramSchmidt`]; the ANM runs each beside the next order's
+    /// solve): the same approximant, bit for bit. Falls back to [`Self::new`] when
+    /// `orthogonalized` does not hold exactly the series' orders $`1..N`$.
+    ///
+    /// # Errors
+    /// Those of [`Self::new`].
+    pub fn orthogonalized(
+        series: &PathSeries,
+        orthogonalized: GramSchmidt,
+    ) -> Result<Self, SeriesError> {
+        series.validate()?;
+        let order = series.order();
+        if order < 2 {
+            return Err(SeriesError::TooFewOrders {
+                required: 2,
+                found: order,
+            });
+        }
+        let same = orthogonalized.coefficients.len() == order
+            && orthogonalized.capacity == order
+            && orthogonalized
+                .coefficients
+                .iter()
+                .enumerate()
+                .all(|(k, v)| {
+                    v.len() == series.dimension() + 1
+                        && v[..series.dimension()] == series.displacement[k + 1][..]
+                        && v[series.dimension()] == series.load[k + 1]
+                });
+        if !same {
+            return Self::new(series);
+        }
+        let mut origin = series.displacement[0].clone();
+        origin.push(series.load[0]);
+        let GramSchmidt {
+            coefficients,
+            alpha,
+            independent,
+            ..
+        } = orthogonalized;
+        let projections = Projections { alpha, independent };
         let denominator = denominator_coefficients(&projections, order);
         let lower_denominator = denominator_coefficients(&projections, order - 1);
         Ok(Self {
@@ -113,6 +157,7 @@ impl PadeApproximant {
             denominator,
             lower_denominator,
             coefficient_norms: (0..=order).map(|k| series.coefficient_norm(k)).collect(),
+            alpha: projections.alpha,
         })
     }
 
@@ -284,31 +329,28 @@ impl PadeApproximant {
         // division by D_{N-1}.
         let degree = self.denominator.len() - 1;
         let (partial, slope) = partial_denominators(&self.denominator, pole);
-        let mut numerator = vec![0.0; self.origin.len()];
-        self.add_weighted(
-            &mut numerator,
+        let numerator = self.combination_norm(
             powers(pole)
                 .zip(1..=degree)
                 .map(|(power, k)| power * partial[degree - k]),
         );
         let scale = slope[degree].abs() * pole * pole * self.coefficient_norms[1];
-        let rho = norm(&numerator) / scale;
+        let rho = numerator / scale;
         if rho.is_finite() { rho } else { f64::INFINITY }
     }
 
     /// $`\lVert P_N(a) - P_{N-1}(a)\rVert / \lVert P_N(a) - V_0\rVert`$ (NaN-safe: a
-    /// non-finite value counts as a failure of the criterion).
+    /// non-finite value counts as a failure of the criterion), from the weights of the two
+    /// approximants ([`Self::combination_norm`]: no vector of the problem's size is formed —
+    /// the step-length search evaluates it some 20–40 times a step).
     fn relative_difference(&self, parameter: f64) -> f64 {
-        let upper = self.evaluate_combined(&self.denominator, parameter);
-        let lower = self.evaluate_combined(&self.lower_denominator, parameter);
-        let mut difference = 0.0;
-        let mut increment = 0.0;
-        for ((p, q), origin) in upper.iter().zip(&lower).zip(&self.origin) {
-            difference += (p - q) * (p - q);
-            increment += (p - origin) * (p - origin);
-        }
+        let upper = weights(&self.denominator, parameter);
+        let lower = weights(&self.lower_denominator, parameter);
+        let lower = lower.iter().chain(std::iter::repeat(&0.0));
+        let difference = self.combination_norm(upper.iter().zip(lower).map(|(p, q)| p - q));
+        let increment = self.combination_norm(upper.iter().copied());
         let ratio = if increment > 0.0 {
-            (difference / increment).sqrt()
+            difference / increment
         } else if difference == 0.0 {
             0.0
         } else {
@@ -317,16 +359,26 @@ impl PadeApproximant {
         if ratio.is_nan() { f64::INFINITY } else { ratio }
     }
 
+    /// $`\lVert \sum_k c_k V_k \rVert`$ for the weights $`c_k`$ of orders $`1, 2, \dots`$ (at most
+    /// $`N`$), from the Gram–Schmidt coordinates: with $`V_k = \sum_j \alpha_{kj} u_j`$ and the
+    /// $`u_j`$ orthonormal it is the norm of $`\sum_k c_k \alpha_{k\cdot}`$, $`O(N^2)`$ instead of
+    /// a pass over $`N`$ vectors of the problem's size, without the cancellation of a Gram
+    /// matrix's quadratic form. The part of a coefficient Gram–Schmidt found dependent (below
+    /// [`GRAM_SCHMIDT_TOLERANCE`] of its norm) is left out.
+    fn combination_norm(&self, weights: impl Iterator<Item = f64>) -> f64 {
+        let mut coordinates = vec![0.0; self.alpha.len()];
+        for (weight, row) in weights.zip(&self.alpha) {
+            for (coordinate, alpha) in coordinates.iter_mut().zip(row) {
+                *coordinate += weight * alpha;
+            }
+        }
+        norm(&coordinates)
+    }
+
     /// $`P_M(a)`$ as one combined vector, $`M - 1`$ = degree of `denominator`.
     fn evaluate_combined(&self, denominator: &[f64], parameter: f64) -> Vec<f64> {
-        let degree = denominator.len() - 1;
-        let (partial, _) = partial_denominators(denominator, parameter);
-        let full = partial[degree];
         let mut result = self.origin.clone();
-        let weights = powers(parameter)
-            .zip(1..=degree)
-            .map(|(power, k)| power * partial[degree - k] / full);
-        self.add_weighted(&mut result, weights);
+        self.add_weighted(&mut result, weights(denominator, parameter).into_iter());
         result
     }
 
@@ -405,24 +457,70 @@ fn bracket_step_length(accepted: &dyn Fn(f64) -> bool, start: f64, upper: f64) -
     StepBracket::Final(0.0)
 }
 
+/// The weights $`w_k(a) = a^k D_{M-1-k}(a) / D_{M-1}(a)`$, $`k = 1, \dots, M-1`$, of
+/// $`P_M(a) = V_0 + \sum_k w_k V_k`$ for the denominator coefficients `denominator` (degree
+/// $`M - 1`$).
+fn weights(denominator: &[f64], parameter: f64) -> Vec<f64> {
+    let degree = denominator.len() - 1;
+    let (partial, _) = partial_denominators(denominator, parameter);
+    let full = partial[degree];
+    powers(parameter)
+        .zip(1..=degree)
+        .map(|(power, k)| power * partial[degree - k] / full)
+        .collect()
+}
+
 /// $`a, a^2, a^3, \dots`$, each power the previous one times $`a`$.
 fn powers(parameter: f64) -> impl Iterator<Item = f64> {
     std::iter::successors(Some(parameter), move |power| Some(power * parameter))
 }
 
-/// Modified Gram–Schmidt with one re-orthogonalisation pass ("twice is enough").
-fn gram_schmidt(vectors: &[Vec<f64>]) -> Projections {
-    let count = vectors.len();
-    let mut basis: Vec<Option<Vec<f64>>> = Vec::with_capacity(count);
-    let mut alpha = vec![vec![0.0; count]; count];
-    let mut independent = vec![false; count];
-    for (k, vector) in vectors.iter().enumerate() {
+/// Modified Gram–Schmidt with one re-orthogonalisation pass ("twice is enough") on the
+/// coefficients $`V_k = (U_k, \lambda_k)`$ of a series, pushed one at a time in order
+/// ([`PadeApproximant::orthogonalized`]): each depends only on those before it, so the ANM
+/// orthogonalises $`V_{k-1}`$ on the core the order-$`k`$ solve leaves idle.
+#[derive(Clone, Debug)]
+pub struct GramSchmidt {
+    /// The number of coefficients it is made for ($`N`$).
+    capacity: usize,
+    /// The combined coefficients pushed so far.
+    coefficients: Vec<Vec<f64>>,
+    /// The orthonormal directions (`None` for a dependent coefficient).
+    basis: Vec<Option<Vec<f64>>>,
+    alpha: Vec<Vec<f64>>,
+    independent: Vec<bool>,
+}
+
+impl GramSchmidt {
+    /// Ready for the $`N`$ = `capacity` coefficients of a series of order $`N`$.
+    #[must_use]
+    pub fn new(capacity: usize) -> Self {
+        Self {
+            capacity,
+            coefficients: Vec::with_capacity(capacity),
+            basis: Vec::with_capacity(capacity),
+            alpha: Vec::with_capacity(capacity),
+            independent: Vec::with_capacity(capacity),
+        }
+    }
+
+    /// Orthogonalises the next coefficient $`V_k = `$ (`displacement`, `load`) against those
+    /// before it. Beyond the capacity it is ignored (and the approximant built from scratch).
+    pub fn push(&mut self, displacement: &[f64], load: f64) {
+        let k = self.coefficients.len();
+        if k >= self.capacity {
+            self.capacity = usize::MAX;
+            return;
+        }
+        let mut vector = displacement.to_vec();
+        vector.push(load);
+        let mut alpha = vec![0.0; self.capacity];
         let mut residual = vector.clone();
         for _pass in 0..2 {
-            for (j, direction) in basis.iter().enumerate() {
+            for (j, direction) in self.basis.iter().enumerate() {
                 if let Some(direction) = direction {
                     let projection = dot(&residual, direction);
-                    alpha[k][j] += projection;
+                    alpha[j] += projection;
                     for (target, value) in residual.iter_mut().zip(direction) {
                         *target -= projection * value;
                     }
@@ -430,19 +528,21 @@ fn gram_schmidt(vectors: &[Vec<f64>]) -> Projections {
             }
         }
         let residual_norm = norm(&residual);
-        let vector_norm = norm(vector);
+        let vector_norm = norm(&vector);
         if vector_norm > 0.0 && residual_norm > GRAM_SCHMIDT_TOLERANCE * vector_norm {
             for value in &mut residual {
                 *value /= residual_norm;
             }
-            alpha[k][k] = residual_norm;
-            independent[k] = true;
-            basis.push(Some(residual));
+            alpha[k] = residual_norm;
+            self.independent.push(true);
+            self.basis.push(Some(residual));
         } else {
-            basis.push(None);
+            self.independent.push(false);
+            self.basis.push(None);
         }
+        self.alpha.push(alpha);
+        self.coefficients.push(vector);
     }
-    Projections { alpha, independent }
 }
 
 /// $`(1, d_1, \dots, d_{M-1})`$ for the approximant of order $`M`$ (see [`PadeApproximant`]).
@@ -602,4 +702,95 @@ fn sign_change_roots(coefficients: &[f64], minimum: f64) -> Vec<f64> {
         previous_value = next_value;
     }
     Vec::new()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// $`V(a) = V_0 + \sum_j c_j\,a/(1 - a/\rho_j)`$ in 30 unknowns and a load, twelve poles
+    /// $`\rho_j`$ from 0.6 to 3.9: every coefficient of orders $`1..=10`$ independent.
+    fn rational_series(order: usize) -> PathSeries {
+        let dimension = 30;
+        let poles: Vec<f64> = (0..12).map(|j| 0.6 + 0.3 * j as f64).collect();
+        let direction =
+            |j: usize, i: usize| ((1 + i) as f64 * (0.7 + j as f64)).sin() / (1.0 + j as f64);
+        let coefficient = |k: usize, i: usize| -> f64 {
+            if k == 0 {
+                return 0.1 * i as f64;
+            }
+            poles
+                .iter()
+                .enumerate()
+                .map(|(j, rho)| direction(j, i) * rho.powi(1 - k as i32))
+                .sum()
+        };
+        let displacement = (0..=order)
+            .map(|k| (0..dimension).map(|i| coefficient(k, i)).collect())
+            .collect();
+        let load = (0..=order).map(|k| coefficient(k, dimension)).collect();
+        PathSeries::new(displacement, load).unwrap()
+    }
+
+    #[test]
+    fn relative_difference_from_coordinates_matches_the_vectors() {
+        let series = rational_series(10);
+        let pade = PadeApproximant::new(&series).unwrap();
+        let direct = |a: f64| {
+            let (upper, upper_load) = pade.evaluate(a);
+            let (lower, lower_load) = pade.evaluate_lower(a);
+            let mut difference = (upper_load - lower_load).powi(2);
+            let mut increment = (upper_load - series.load[0]).powi(2);
+            for ((p, q), origin) in upper.iter().zip(&lower).zip(&series.displacement[0]) {
+                difference += (p - q) * (p - q);
+                increment += (p - origin) * (p - origin);
+            }
+            (difference / increment).sqrt()
+        };
+        // From the rounding floor of the vectors' difference (3e-14 at a = 0.01, where the
+        // coordinates give 2e-18) through the criterion's 1e-7 to order one.
+        let mut largest: f64 = 0.0;
+        for a in [0.01, 0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.55] {
+            let (coordinates, vectors) = (pade.relative_difference(a), direct(a));
+            largest = largest.max(vectors);
+            assert!(
+                (coordinates - vectors).abs() <= 1e-9 * vectors + 1e-13,
+                "a = {a}: {coordinates:e} from the coordinates, {vectors:e} from the vectors"
+            );
+        }
+        assert!(
+            largest > 1e-7,
+            "the criterion's 1e-7 was not reached: {largest:e}"
+        );
+    }
+
+    #[test]
+    fn orthogonalized_is_new_bit_for_bit_and_falls_back_on_other_coefficients() {
+        let series = rational_series(10);
+        let new = PadeApproximant::new(&series).unwrap();
+        let mut pushed = GramSchmidt::new(10);
+        for k in 1..=10 {
+            pushed.push(&series.displacement[k], series.load[k]);
+        }
+        let orthogonalized = PadeApproximant::orthogonalized(&series, pushed).unwrap();
+        assert_eq!(orthogonalized.denominator, new.denominator);
+        assert_eq!(orthogonalized.lower_denominator, new.lower_denominator);
+        assert_eq!(orthogonalized.evaluate(0.2), new.evaluate(0.2));
+        assert_eq!(
+            orthogonalized.pade_step_length(1e-7),
+            new.pade_step_length(1e-7)
+        );
+        // Coefficients of another series, or too few of them: built from scratch.
+        let other = rational_series(11);
+        let mut wrong = GramSchmidt::new(10);
+        for k in 2..=11 {
+            wrong.push(&other.displacement[k], other.load[k]);
+        }
+        let mut short = GramSchmidt::new(10);
+        short.push(&series.displacement[1], series.load[1]);
+        for orthogonalized in [wrong, short] {
+            let rebuilt = PadeApproximant::orthogonalized(&series, orthogonalized).unwrap();
+            assert_eq!(rebuilt.denominator, new.denominator);
+        }
+    }
 }
