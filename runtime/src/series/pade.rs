@@ -91,25 +91,14 @@ impl PadeApproximant {
     /// # Errors
     /// Those of [`PathSeries::validate`], and [`SeriesError::TooFewOrders`] for $`N < 2`$.
     pub fn new(series: &PathSeries) -> Result<Self, SeriesError> {
-        series.validate()?;
-        let order = series.order();
-        if order < 2 {
-            return Err(SeriesError::TooFewOrders {
-                required: 2,
-                found: order,
-            });
-        }
-        let mut orthogonalized = GramSchmidt::new(order);
-        for k in 1..=order {
-            orthogonalized.push(&series.displacement[k], series.load[k]);
-        }
-        Self::orthogonalized(series, orthogonalized)
+        let order = checked_order(series)?;
+        Ok(Self::build(series, order, GramSchmidt::of(series)))
     }
 
     /// [`Self::new`] with the Gram–Schmidt of the coefficients done already, one at a time as
     /// the series produced them ([`GramSchmidt`]; the ANM runs each beside the next order's
-    /// solve): the same approximant, bit for bit. Falls back to [`Self::new`] when
-    /// `orthogonalized` does not hold exactly the series' orders $`1..N`$.
+    /// solve): the same approximant, bit for bit. Orthogonalises the series itself when
+    /// `orthogonalized` does not hold its orders $`1..N`$ ([`GramSchmidt::holds`]).
     ///
     /// # Errors
     /// Those of [`Self::new`].
@@ -117,48 +106,31 @@ impl PadeApproximant {
         series: &PathSeries,
         orthogonalized: GramSchmidt,
     ) -> Result<Self, SeriesError> {
-        series.validate()?;
-        let order = series.order();
-        if order < 2 {
-            return Err(SeriesError::TooFewOrders {
-                required: 2,
-                found: order,
-            });
-        }
-        let same = orthogonalized.coefficients.len() == order
-            && orthogonalized.capacity == order
-            && orthogonalized
-                .coefficients
-                .iter()
-                .enumerate()
-                .all(|(k, v)| {
-                    v.len() == series.dimension() + 1
-                        && v[..series.dimension()] == series.displacement[k + 1][..]
-                        && v[series.dimension()] == series.load[k + 1]
-                });
-        if !same {
-            return Self::new(series);
-        }
+        let order = checked_order(series)?;
+        let orthogonalized = if orthogonalized.holds(series) {
+            orthogonalized
+        } else {
+            GramSchmidt::of(series)
+        };
+        Ok(Self::build(series, order, orthogonalized))
+    }
+
+    /// The approximants of a checked series of order `order` from its coefficients'
+    /// Gram–Schmidt.
+    fn build(series: &PathSeries, order: usize, orthogonalized: GramSchmidt) -> Self {
         let mut origin = series.displacement[0].clone();
         origin.push(series.load[0]);
-        let GramSchmidt {
-            coefficients,
-            alpha,
-            independent,
-            ..
-        } = orthogonalized;
-        let projections = Projections { alpha, independent };
-        let denominator = denominator_coefficients(&projections, order);
-        let lower_denominator = denominator_coefficients(&projections, order - 1);
-        Ok(Self {
+        let denominator = denominator_coefficients(&orthogonalized, order);
+        let lower_denominator = denominator_coefficients(&orthogonalized, order - 1);
+        Self {
             dimension: series.dimension(),
             origin,
-            coefficients,
+            coefficients: orthogonalized.coefficients,
             denominator,
             lower_denominator,
             coefficient_norms: (0..=order).map(|k| series.coefficient_norm(k)).collect(),
-            alpha: projections.alpha,
-        })
+            alpha: orthogonalized.alpha,
+        }
     }
 
     /// The truncation order $`N`$ of the underlying series.
@@ -399,11 +371,17 @@ impl PadeApproximant {
     }
 }
 
-/// The Gram–Schmidt coefficients: `alpha[k][j]` $`= \alpha_{k+1, j+1}`$ (0-based) and a flag
-/// per basis vector telling whether it exists (non-degenerate residual).
-struct Projections {
-    alpha: Vec<Vec<f64>>,
-    independent: Vec<bool>,
+/// The order $`N \ge 2`$ of a valid series.
+fn checked_order(series: &PathSeries) -> Result<usize, SeriesError> {
+    series.validate()?;
+    let order = series.order();
+    if order < 2 {
+        return Err(SeriesError::TooFewOrders {
+            required: 2,
+            found: order,
+        });
+    }
+    Ok(order)
 }
 
 /// Where the search of [`PadeApproximant::pade_step_length_with_pole_safety`] stands after
@@ -479,42 +457,53 @@ fn powers(parameter: f64) -> impl Iterator<Item = f64> {
 /// coefficients $`V_k = (U_k, \lambda_k)`$ of a series, pushed one at a time in order
 /// ([`PadeApproximant::orthogonalized`]): each depends only on those before it, so the ANM
 /// orthogonalises $`V_{k-1}`$ on the core the order-$`k`$ solve leaves idle.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub struct GramSchmidt {
-    /// The number of coefficients it is made for ($`N`$).
-    capacity: usize,
     /// The combined coefficients pushed so far.
     coefficients: Vec<Vec<f64>>,
     /// The orthonormal directions (`None` for a dependent coefficient).
     basis: Vec<Option<Vec<f64>>>,
+    /// `alpha[k][j]` $`= \alpha_{k+1, j+1}`$ (0-based, $`j \le k`$).
     alpha: Vec<Vec<f64>>,
+    /// Whether each basis direction exists (non-degenerate residual).
     independent: Vec<bool>,
 }
 
 impl GramSchmidt {
-    /// Ready for the $`N`$ = `capacity` coefficients of a series of order $`N`$.
+    /// Nothing pushed yet.
     #[must_use]
-    pub fn new(capacity: usize) -> Self {
-        Self {
-            capacity,
-            coefficients: Vec::with_capacity(capacity),
-            basis: Vec::with_capacity(capacity),
-            alpha: Vec::with_capacity(capacity),
-            independent: Vec::with_capacity(capacity),
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// The coefficients $`V_1, \dots, V_N`$ of `series`, pushed in order.
+    fn of(series: &PathSeries) -> Self {
+        let mut orthogonalized = Self::new();
+        for k in 1..=series.order() {
+            orthogonalized.push(&series.displacement[k], series.load[k]);
         }
+        orthogonalized
+    }
+
+    /// Whether it holds the coefficients of orders $`1..N`$ of `series`, told by their number,
+    /// sizes and loads $`\lambda_k`$ (not by every component: the check runs every step).
+    fn holds(&self, series: &PathSeries) -> bool {
+        let dimension = series.dimension();
+        self.coefficients.len() == series.order()
+            && self
+                .coefficients
+                .iter()
+                .zip(&series.load[1..])
+                .all(|(v, &load)| v.len() == dimension + 1 && v[dimension] == load)
     }
 
     /// Orthogonalises the next coefficient $`V_k = `$ (`displacement`, `load`) against those
-    /// before it. Beyond the capacity it is ignored (and the approximant built from scratch).
+    /// before it.
     pub fn push(&mut self, displacement: &[f64], load: f64) {
         let k = self.coefficients.len();
-        if k >= self.capacity {
-            self.capacity = usize::MAX;
-            return;
-        }
         let mut vector = displacement.to_vec();
         vector.push(load);
-        let mut alpha = vec![0.0; self.capacity];
+        let mut alpha = vec![0.0; k + 1];
         let mut residual = vector.clone();
         for _pass in 0..2 {
             for (j, direction) in self.basis.iter().enumerate() {
@@ -546,7 +535,7 @@ impl GramSchmidt {
 }
 
 /// $`(1, d_1, \dots, d_{M-1})`$ for the approximant of order $`M`$ (see [`PadeApproximant`]).
-fn denominator_coefficients(projections: &Projections, order: usize) -> Vec<f64> {
+fn denominator_coefficients(projections: &GramSchmidt, order: usize) -> Vec<f64> {
     // 1-based alpha(k, j) = projections.alpha[k - 1][j - 1].
     let alpha = |k: usize, j: usize| projections.alpha[k - 1][j - 1];
     let mut coefficients = vec![0.0; order];
@@ -768,7 +757,7 @@ mod tests {
     fn orthogonalized_is_new_bit_for_bit_and_falls_back_on_other_coefficients() {
         let series = rational_series(10);
         let new = PadeApproximant::new(&series).unwrap();
-        let mut pushed = GramSchmidt::new(10);
+        let mut pushed = GramSchmidt::new();
         for k in 1..=10 {
             pushed.push(&series.displacement[k], series.load[k]);
         }
@@ -782,11 +771,11 @@ mod tests {
         );
         // Coefficients of another series, or too few of them: built from scratch.
         let other = rational_series(11);
-        let mut wrong = GramSchmidt::new(10);
+        let mut wrong = GramSchmidt::new();
         for k in 2..=11 {
             wrong.push(&other.displacement[k], other.load[k]);
         }
-        let mut short = GramSchmidt::new(10);
+        let mut short = GramSchmidt::new();
         short.push(&series.displacement[1], series.load[1]);
         for orthogonalized in [wrong, short] {
             let rebuilt = PadeApproximant::orthogonalized(&series, orthogonalized).unwrap();

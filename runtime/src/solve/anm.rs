@@ -36,8 +36,8 @@
 //! turns smoothly onto the wrinkled branch — the first step whose series shows a geometric tail
 //! (the ANM signature of a nearby singularity) predicts the bifurcation load by one such analysis
 //! with its own factorised tangent, on a thread of its own beside the next step's series; the
-//! bifurcation is reported at the step whose end passes it. An eigen-solver failure never stops the path and is never swallowed: it is kept in
-//! [`PathResult::warnings`].
+//! bifurcation is reported at the step whose end passes it. An eigen-solver failure never stops
+//! the path and is never swallowed: it is kept in [`PathResult::warnings`].
 
 use super::arc_length::{ArcCorrectorOptions, ArcLengthConstraint, correct_on_arc};
 use super::error::SolveError;
@@ -230,33 +230,11 @@ pub fn compute_series<M: EnergyModel>(
     )
 }
 
-/// [`compute_series`], with the Gram–Schmidt of its coefficients for the Padé approximants
-/// ([`PadeApproximant::orthogonalized`]): each $`V_{k-1}`$ is orthogonalised while the order-$`k`$
-/// solve runs, on the core the solve leaves idle (the approximant's construction took 0.06 of
-/// a step's floor on the reference envelope at 128 × 64, after the series).
-pub fn compute_series_orthogonalized<M: EnergyModel>(
-    problem: &Problem<M>,
-    state: &PathState,
-    factor: &SparseFactorization,
-    order: usize,
-    previous_direction: Option<(&[f64], f64)>,
-    tape: &mut TaylorTape,
-) -> Result<(PathSeries, Vec<f64>, GramSchmidt), SolveError> {
-    let order = order.clamp(2, tape.highest_order());
-    let mut orthogonalized = GramSchmidt::new(order);
-    let (series, u_hat) = series_with(
-        problem,
-        state,
-        factor,
-        order,
-        previous_direction,
-        tape,
-        Some(&mut orthogonalized),
-    )?;
-    Ok((series, u_hat, orthogonalized))
-}
-
-/// [`compute_series`], pushing its coefficients into `orthogonalized` when given.
+/// [`compute_series`], pushing its coefficients into `orthogonalized` when given, for the Padé
+/// approximants ([`PadeApproximant::orthogonalized`]): each $`V_{k-1}`$ is orthogonalised while
+/// the order-$`k`$ solve runs, on the core the solve leaves idle (the approximant's
+/// construction took 0.06 of a step's floor on the reference envelope at 128 × 64, after the
+/// series).
 fn series_with<M: EnergyModel>(
     problem: &Problem<M>,
     state: &PathState,
@@ -580,7 +558,7 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
         let (series, u_hat, orthogonalized) = self.series()?;
         // One started at an earlier step has had this series beside it.
         self.collect_prediction(steps_log);
-        let predicted = self.watch_bifurcation(step, &series, &u_hat, steps_log.len());
+        let predicted = self.watch_bifurcation(step, &series, &u_hat, steps_log);
         let (mut approximant, offered) = self.approximant(&series, orthogonalized);
         let series_range = approximant.plain;
         let (end, crossings_redone, interior) =
@@ -633,8 +611,7 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
     }
 
     /// The series of the step at the current point ([`compute_series`]; with its Gram–Schmidt
-    /// when Padé approximants are enabled, [`compute_series_orthogonalized`]), timed and
-    /// counted.
+    /// when Padé approximants are enabled), timed and counted.
     fn series(&mut self) -> Result<(PathSeries, Vec<f64>, Option<GramSchmidt>), SolveError> {
         let t = Instant::now();
         let solves_before = self.linearization.factor().solve_seconds();
@@ -642,28 +619,16 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
             .previous_direction
             .as_ref()
             .map(|(u, l)| (u.as_slice(), *l));
-        let (problem, factor) = (self.linearization.problem(), self.linearization.factor());
-        let (series, u_hat, orthogonalized) = if self.options.pade {
-            let (series, u_hat, orthogonalized) = compute_series_orthogonalized(
-                problem,
-                &self.state,
-                factor,
-                self.options.order,
-                direction,
-                &mut self.tape,
-            )?;
-            (series, u_hat, Some(orthogonalized))
-        } else {
-            let (series, u_hat) = compute_series(
-                problem,
-                &self.state,
-                factor,
-                self.options.order,
-                direction,
-                &mut self.tape,
-            )?;
-            (series, u_hat, None)
-        };
+        let mut orthogonalized = self.options.pade.then(GramSchmidt::new);
+        let (series, u_hat) = series_with(
+            self.linearization.problem(),
+            &self.state,
+            self.linearization.factor(),
+            self.options.order,
+            direction,
+            &mut self.tape,
+            orthogonalized.as_mut(),
+        )?;
         let solve_seconds = self.linearization.factor().solve_seconds() - solves_before;
         let statistics = &mut self.linearization.statistics;
         statistics.series_assemblies += series.order() - 1;
@@ -871,7 +836,7 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
         step: usize,
         series: &PathSeries,
         u_hat: &[f64],
-        logged: usize,
+        steps_log: &mut [AnmStep],
     ) -> Option<f64> {
         if !self.options.predict_bifurcation
             || self.prediction.is_some()
@@ -888,7 +853,7 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
         if shifted.is_none() || rayon::current_num_threads() < 2 {
             // In place, with the path's factorisation: an unshifted prediction needs no other.
             let mut factorizations = 0;
-            let predicted = predict_bifurcation(
+            let load = predict_bifurcation(
                 problem,
                 &self.state,
                 u_hat,
@@ -898,19 +863,13 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
                 self.options.bifurcation_load_guess,
                 &mut factorizations,
             );
-            let statistics = &mut self.linearization.statistics;
-            statistics.factorizations += factorizations;
-            statistics.bifurcation_seconds += clock.elapsed().as_secs_f64();
-            return match predicted {
-                Ok(load) => {
-                    self.prediction = Some(load);
-                    Some(load)
-                }
-                Err(error) => {
-                    self.prediction_failed(step, self.state.load, &error);
-                    None
-                }
+            self.linearization.statistics.bifurcation_seconds += clock.elapsed().as_secs_f64();
+            let made = (step, steps_log.len(), self.state.load);
+            let outcome = PredictionOutcome {
+                load,
+                factorizations,
             };
+            return self.settle_prediction(made, outcome, steps_log);
         }
         let analysis = match self.linearization.factor().same_analysis() {
             Ok(analysis) => analysis,
@@ -948,17 +907,16 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
         self.linearization.statistics.bifurcation_seconds += clock.elapsed().as_secs_f64();
         self.pending = Some(PendingPrediction {
             step,
-            record: logged,
+            record: steps_log.len(),
             load: self.state.load,
             handle: self.scope.spawn(predict),
         });
         None
     }
 
-    /// Waits for the prediction under way, if any, and takes what it gives: its load (also
-    /// into the record of the step it was made at, once logged), the first logged step since then
-    /// whose end passes it as the bifurcation's, or a warning when it failed. The time waited
-    /// counts as the prediction's. Returns its load.
+    /// Waits for the prediction under way, if any, and takes what it gives
+    /// ([`Self::settle_prediction`]). The time waited counts as the prediction's. Returns its
+    /// load.
     fn collect_prediction(&mut self, steps_log: &mut [AnmStep]) -> Option<f64> {
         let pending = self.pending.take()?;
         let clock = Instant::now();
@@ -966,14 +924,28 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
             Ok(outcome) => outcome,
             Err(panic) => std::panic::resume_unwind(panic),
         };
-        let statistics = &mut self.linearization.statistics;
-        statistics.bifurcation_seconds += clock.elapsed().as_secs_f64();
-        statistics.factorizations += outcome.factorizations;
+        self.linearization.statistics.bifurcation_seconds += clock.elapsed().as_secs_f64();
+        let made = (pending.step, pending.record, pending.load);
+        self.settle_prediction(made, outcome, steps_log)
+    }
+
+    /// Takes what the prediction made at step `made.0` (whose record goes at `made.1` of the
+    /// steps' log, from load `made.2`) gave: its load, also into that record once logged, with
+    /// the first logged step since then whose end passes it as the bifurcation's; or a warning
+    /// when it failed. Returns the load.
+    fn settle_prediction(
+        &mut self,
+        made: (usize, usize, f64),
+        outcome: PredictionOutcome,
+        steps_log: &mut [AnmStep],
+    ) -> Option<f64> {
+        let (step, logged, start_load) = made;
+        self.linearization.statistics.factorizations += outcome.factorizations;
         match outcome.load {
             Ok(load) => {
                 self.prediction = Some(load);
-                for record in steps_log.iter_mut().skip(pending.record) {
-                    if record.step == pending.step {
+                for record in steps_log.iter_mut().skip(logged) {
+                    if record.step == step {
                         record.predicted_bifurcation = Some(load);
                     }
                     let (from, to) = record.load_range;
@@ -984,7 +956,7 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
                 Some(load)
             }
             Err(error) => {
-                self.prediction_failed(pending.step, pending.load, &error);
+                self.prediction_failed(step, start_load, &error);
                 None
             }
         }
@@ -1255,48 +1227,41 @@ fn predict_bifurcation<M: EnergyModel>(
         start,
         ..BucklingOptions::default()
     };
-    let shift = prediction_shift(load_guess, state.load);
-    let (factorized, mut spare) = match unshifted {
-        Unshifted::Factorized(factor) => (Some(factor), None),
-        Unshifted::Analysed(factor) => (None, Some(*factor)),
-    };
-    if let Some(shift) = shift {
+    let mut unshifted = unshifted;
+    if let Some(shift) = prediction_shift(load_guess, state.load) {
         let mut shifted = tangent.clone();
         for (a, &b) in shifted.values.iter_mut().zip(&b.values) {
             *a += shift * b;
         }
-        let shifted_factor = match spare.take() {
-            Some(factor) => Some(factor),
-            None => factorized.and_then(|factor| factor.same_analysis().ok()),
+        // The analysed factorisation given, else a new one of the factorised tangent's analysis.
+        let mut made;
+        let shifted_factor = match &mut unshifted {
+            Unshifted::Analysed(factor) => Some(&mut **factor),
+            Unshifted::Factorized(factor) => {
+                made = factor.same_analysis().ok();
+                made.as_mut()
+            }
         };
-        if let Some(mut shifted_factor) = shifted_factor {
+        if let Some(shifted_factor) = shifted_factor {
             *factorizations += 1;
             let ahead = (shifted_factor.factorize(&shifted).is_ok()
                 && shifted_factor.negative_pivots() == Some(0))
-            .then(|| smallest_positive_buckling(&shifted, &shifted_factor, &b, &options).ok())
+            .then(|| smallest_positive_buckling(&shifted, shifted_factor, &b, &options).ok())
             .flatten()
             .and_then(|solution| solution.modes.first().map(|m| m.load_factor));
             if let Some(nu) = ahead {
                 return Ok(state.load + shift + nu);
             }
-            spare = Some(shifted_factor);
         }
     }
-    let owned;
-    let factor = match (factorized, spare) {
-        (Some(factor), _) => factor,
-        (None, Some(mut factor)) => {
+    let factor: &SparseFactorization = match &mut unshifted {
+        Unshifted::Factorized(factor) => factor,
+        Unshifted::Analysed(factor) => {
             *factorizations += 1;
             factor.factorize(tangent).map_err(SolveError::linear(
                 "bifurcation prediction: factorisation of the tangent",
             ))?;
-            owned = factor;
-            &owned
-        }
-        (None, None) => {
-            return Err(SolveError::Buckling(
-                "bifurcation prediction: no factorisation of the tangent".into(),
-            ));
+            factor
         }
     };
     let solution = smallest_positive_buckling(tangent, factor, &b, &options)
