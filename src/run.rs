@@ -30,7 +30,7 @@ use wrinkle_runtime::fem::{BodyLoad, LoadVectors, Loads, Mesh};
 use wrinkle_runtime::linear::factor::SparseFactorization;
 use wrinkle_runtime::problem::Problem;
 use wrinkle_runtime::solve::anm::AnmOptions;
-use wrinkle_runtime::solve::ellipticity::legendre_hadamard;
+use wrinkle_runtime::solve::ellipticity::{EllipticityReport, legendre_hadamard};
 use wrinkle_runtime::solve::follow::{
     FollowMethod, FollowOptions, FollowedPath, PathObserver, follow_path,
 };
@@ -235,7 +235,7 @@ const RIKS_MAX_AMPLITUDE_CHANGE: f64 = 0.25;
 
 /// Watches the path: amplitudes, ellipticity at step ends, snapshots; stops at the target or,
 /// without imperfection, past the threshold on the flat fundamental branch.
-struct PathRecorder<'a, M: EnergyModel> {
+struct PathRecorder<'a, 's, M: EnergyModel> {
     scene: &'a Scene,
     problem: &'a Problem<M>,
     layout: &'a Layout,
@@ -252,9 +252,28 @@ struct PathRecorder<'a, M: EnergyModel> {
     previous: Option<PathState>,
     progress: Progress,
     trace: Trace,
+    /// The step ends' ellipticity checks, beside the path.
+    checks: EllipticityChecks<'a, 's>,
 }
 
-impl<M: EnergyModel> PathRecorder<'_, M> {
+/// Where the step ends' ellipticity checks ([`legendre_hadamard`]) run. None steers the path
+/// (its point's `elliptic` and the run's loss of ellipticity are only reported), so each runs
+/// on a thread of its own, on a one-worker pool of its own (not on the path's workers), beside
+/// the path's next step; it is collected at the next step end, before a point is replaced by
+/// its landing, and when the path ends. The checks are the same sums on any thread, so the
+/// records are the same as in place. Without a second worker (`--threads 1`) they run in place.
+struct EllipticityChecks<'a, 's> {
+    /// The scope and the pool of the threaded checks; `None`: in place.
+    beside: Option<(&'s std::thread::Scope<'s, 'a>, &'a rayon::ThreadPool)>,
+    /// The check under way: the point it is for and its load.
+    pending: Option<(
+        usize,
+        f64,
+        std::thread::ScopedJoinHandle<'s, EllipticityReport>,
+    )>,
+}
+
+impl<M: EnergyModel> PathRecorder<'_, '_, M> {
     fn snapshot<'b>(&'b self, values: &'b [f64]) -> Snapshot<'b> {
         Snapshot {
             mesh: self.problem.assembler.mesh(),
@@ -283,18 +302,6 @@ impl<M: EnergyModel> PathRecorder<'_, M> {
         let snapshot = self.snapshot(&values);
         let max_amplitude = snapshot.max_amplitude();
         let centre_amplitude = snapshot.centre_amplitude(centre, self.wavelength);
-        let elliptic = if event.interior {
-            true
-        } else {
-            let clock = Instant::now();
-            let report = legendre_hadamard(self.problem, &state.displacement, state.load);
-            self.trace.ellipticity_seconds += clock.elapsed().as_secs_f64();
-            let well_posed = report.well_posed();
-            if !well_posed && self.trace.loss_of_ellipticity.is_none() {
-                self.trace.loss_of_ellipticity = Some((state.load, report));
-            }
-            well_posed
-        };
         let biaxial = self.scene.load.kind == LoadKind::Biaxial;
         self.trace.points.push(PathPoint {
             step: event.step,
@@ -305,9 +312,13 @@ impl<M: EnergyModel> PathRecorder<'_, M> {
             max_amplitude_over_h: max_amplitude / h,
             centre_amplitude_over_h: centre_amplitude / h,
             residual: event.relative_residual,
-            elliptic,
+            // Set by the point's check (step ends only) when it is collected.
+            elliptic: true,
             closed_form_amplitude_over_h: self.closed_form_amplitude(state.load),
         });
+        if !event.interior {
+            self.check_ellipticity(state);
+        }
         self.record_requested(state);
         let levels = [0.05, 0.25, 0.5, 0.75, 1.0];
         while self.trace.profiles.len() < levels.len()
@@ -353,6 +364,56 @@ impl<M: EnergyModel> PathRecorder<'_, M> {
             PathControl::Stop
         } else {
             PathControl::Continue
+        }
+    }
+
+    /// Starts the ellipticity check of the step end `state`, the point recorded last, after
+    /// collecting the previous one's: beside the path when it can, else in place.
+    fn check_ellipticity(&mut self, state: &PathState) {
+        self.collect_ellipticity();
+        let point = self.trace.points.len() - 1;
+        let problem = self.problem;
+        match self.checks.beside {
+            Some((scope, pool)) => {
+                let displacement = state.displacement.clone();
+                let load = state.load;
+                let handle = scope.spawn(move || {
+                    pool.install(|| legendre_hadamard(problem, &displacement, load))
+                });
+                self.checks.pending = Some((point, load, handle));
+            }
+            None => {
+                let clock = Instant::now();
+                let report = legendre_hadamard(problem, &state.displacement, state.load);
+                self.trace.ellipticity_seconds += clock.elapsed().as_secs_f64();
+                self.settle_ellipticity(point, state.load, report);
+            }
+        }
+    }
+
+    /// Waits for the check under way, if any, and records it (the wait is the path's
+    /// ellipticity time).
+    fn collect_ellipticity(&mut self) {
+        let Some((point, load, handle)) = self.checks.pending.take() else {
+            return;
+        };
+        let clock = Instant::now();
+        let report = handle
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        self.trace.ellipticity_seconds += clock.elapsed().as_secs_f64();
+        self.settle_ellipticity(point, load, report);
+    }
+
+    /// Records the check `report` of point `point` (at `load`): its `elliptic`, and the run's
+    /// first loss of ellipticity.
+    fn settle_ellipticity(&mut self, point: usize, load: f64, report: EllipticityReport) {
+        let well_posed = report.well_posed();
+        if let Some(recorded) = self.trace.points.get_mut(point) {
+            recorded.elliptic = well_posed;
+        }
+        if !well_posed && self.trace.loss_of_ellipticity.is_none() {
+            self.trace.loss_of_ellipticity = Some((load, report));
         }
     }
 
@@ -428,7 +489,10 @@ fn start_point<M: EnergyModel>(
     })
 }
 
-impl<'a, M: EnergyModel> PathRecorder<'a, M> {
+impl<'a, 's, M: EnergyModel> PathRecorder<'a, 's, M> {
+    /// The recorder of a path from `start`; its ellipticity checks run `beside` the path in
+    /// that scope and pool when given, else in place.
+    #[allow(clippy::too_many_arguments)]
     fn new(
         scene: &'a Scene,
         problem: &'a Problem<M>,
@@ -436,6 +500,7 @@ impl<'a, M: EnergyModel> PathRecorder<'a, M> {
         threshold: &Threshold,
         start: &PathState,
         quiet: bool,
+        beside: Option<(&'s std::thread::Scope<'s, 'a>, &'a rayon::ThreadPool)>,
     ) -> Self {
         let target = scene.solver.max_amplitude_over_thickness;
         let mut vtu_requests = scene.output.vtu_loads.clone();
@@ -492,6 +557,10 @@ impl<'a, M: EnergyModel> PathRecorder<'a, M> {
                 ellipticity_seconds: 0.0,
                 recording_seconds: 0.0,
             },
+            checks: EllipticityChecks {
+                beside,
+                pending: None,
+            },
         }
     }
 }
@@ -506,11 +575,53 @@ fn trace_path<M: EnergyModel>(
     quiet: bool,
 ) -> Result<Trace, Error> {
     let start = start_point(problem, factor, threshold)?;
-    let mut recorder = PathRecorder::new(scene, problem, layout, threshold, &start, quiet);
+    // The ellipticity checks' own worker, when the path has two or more.
+    let pool = (rayon::current_num_threads() >= 2)
+        .then(|| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(1)
+                .thread_name(|_| "wrinkle-ellipticity".to_string())
+                .build()
+                .ok()
+        })
+        .flatten();
+    std::thread::scope(|scope| {
+        let beside = pool.as_ref().map(|pool| (scope, pool));
+        let recorder = PathRecorder::new(scene, problem, layout, threshold, &start, quiet, beside);
+        follow_and_record(
+            scene,
+            problem,
+            factor,
+            layout,
+            threshold,
+            start.clone(),
+            recorder,
+        )
+    })
+}
+
+/// The path of [`trace_path`] from `start`, recorded by `recorder`.
+fn follow_and_record<M: EnergyModel>(
+    scene: &Scene,
+    problem: &Problem<M>,
+    factor: &mut SparseFactorization,
+    layout: &Layout,
+    threshold: &Threshold,
+    start: PathState,
+    mut recorder: PathRecorder<'_, '_, M>,
+) -> Result<Trace, Error> {
     let max_load = (scene.solver.max_load > 0.0).then_some(scene.solver.max_load);
     let options = follow_options(scene, problem, layout, threshold, max_load);
-    let FollowedPath { result, anm_steps } =
-        follow_path(problem, start, factor, &options, &mut recorder);
+    let FollowedPath {
+        mut result,
+        anm_steps,
+    } = follow_path(problem, start, factor, &options, &mut recorder);
+    // The wait for the last check is the path's, and its recording's.
+    let clock = Instant::now();
+    recorder.collect_ellipticity();
+    let waited = clock.elapsed().as_secs_f64();
+    recorder.trace.recording_seconds += waited;
+    result.statistics.total_seconds += waited;
     let stop = if recorder.trace.interrupted {
         "interrupted by the user".to_string()
     } else if recorder.trace.passed_perfect_bifurcation.is_some() {
@@ -649,7 +760,7 @@ fn riks_options<M: EnergyModel>(
 
 /// `wrinkle run`'s side of the path: the recorder sees every point, measures the amplitude of
 /// the landing, and forgets an overshooting last point for the landed one.
-impl<M: EnergyModel> PathObserver for PathRecorder<'_, M> {
+impl<M: EnergyModel> PathObserver for PathRecorder<'_, '_, M> {
     fn observe(&mut self, event: &PathEvent) -> PathControl {
         PathRecorder::observe(self, event)
     }
@@ -669,6 +780,11 @@ impl<M: EnergyModel> PathObserver for PathRecorder<'_, M> {
     /// requested states it interpolated, which go back to the requests), then records the
     /// landed point instead: it takes back the requests up to its load.
     fn replace_last(&mut self, kept: &PathState, landed: &PathEvent) {
+        // The overshooting point's check first: its loss of ellipticity stays reported, as in
+        // place (its `elliptic` goes with the point).
+        let clock = Instant::now();
+        self.collect_ellipticity();
+        self.trace.recording_seconds += clock.elapsed().as_secs_f64();
         let trace = &mut self.trace;
         let overshooting_load = trace.points.pop().map(|point| point.lambda);
         trace

@@ -113,6 +113,72 @@ fn run_on_one_and_two_threads_writes_identical_files() {
     let _ = std::fs::remove_dir_all(&root);
 }
 
+/// Example 1's reference envelope at Q = 0.05/mm (a 126 mm wavelength, accepted outside the
+/// model's validity) loses ellipticity at its second step end and stays without it. The step
+/// ends' checks run beside the path with 2 workers and in place with 1: the same `elliptic`
+/// column and the same `loss_of_ellipticity`, at the step end where it happened.
+#[test]
+fn run_losing_ellipticity_on_one_and_two_threads_records_it_identically() {
+    let root = tempfile_root("threads_identical_ellipticity");
+    let directories: Vec<_> = ["1", "2"]
+        .iter()
+        .map(|threads| {
+            let directory = root.join(format!("threads_{threads}"));
+            let output = wrinkle(&[
+                "--threads",
+                threads,
+                "run",
+                "--quiet",
+                "--out",
+                directory.to_str().unwrap(),
+                "--set",
+                "model.wavenumber=0.05",
+                "--set",
+                r#"validity.accept=["scale_separation", "ellipticity"]"#,
+                "--set",
+                "solver.max_amplitude_over_h=1",
+                "--set",
+                "output.plots=false",
+                "--set",
+                "output.surface=false",
+                "--set",
+                "output.vtu=false",
+            ]);
+            assert_eq!(
+                output.status.code(),
+                Some(0),
+                "{}",
+                String::from_utf8_lossy(&output.stderr)
+            );
+            directory
+        })
+        .collect();
+    let first = std::fs::read_to_string(directories[0].join("path.csv")).unwrap();
+    assert_eq!(
+        first,
+        std::fs::read_to_string(directories[1].join("path.csv")).unwrap(),
+        "path.csv differs between 1 and 2 threads"
+    );
+    let summary = json_file(&directories[0].join("summary.json"));
+    assert_eq!(summary, json_file(&directories[1].join("summary.json")));
+    // The loss is reported at a step end, and that row and every later step end say so.
+    let loss = summary["loss_of_ellipticity"]["load"].as_f64().unwrap();
+    let mut rows = first.lines();
+    let header: Vec<&str> = rows.next().unwrap().split(',').collect();
+    let column = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let (interior, lambda, elliptic) = (column("interior"), column("lambda"), column("elliptic"));
+    let step_ends: Vec<(f64, bool)> = rows
+        .map(|row| row.split(',').collect::<Vec<_>>())
+        .filter(|row| row[interior] == "false")
+        .map(|row| (row[lambda].parse().unwrap(), row[elliptic] == "true"))
+        .collect();
+    assert!(step_ends.iter().any(|&(load, _)| load == loss), "{loss}");
+    for &(load, is_elliptic) in &step_ends {
+        assert_eq!(is_elliptic, load < loss, "step end at λ = {load}");
+    }
+    let _ = std::fs::remove_dir_all(&root);
+}
+
 fn tempfile_root(name: &str) -> std::path::PathBuf {
     let root = std::env::temp_dir().join(format!("wrinkle_{name}_{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&root);
