@@ -13,5 +13,6 @@ pub mod fem;
 pub mod linear;
 pub mod problem;
 pub mod series;
+mod simd;
 pub mod solve;
 pub mod wavelength;

@@ -19,7 +19,7 @@ pub(super) type ElementLocal<S, const B: usize> = [[S; B]; MAX_FIELDS];
 impl<M: EnergyModel> Assembler<M> {
     /// Gathers the element's dofs by field: `local[f][b]`, so that a jet entry is one
     /// `B`-term dot product of contiguous values.
-    #[inline]
+    #[inline(always)]
     pub(super) fn gather<E: Element, const B: usize, S: Scalar>(
         &self,
         e: usize,
@@ -38,7 +38,7 @@ impl<M: EnergyModel> Assembler<M> {
 
     /// Evaluates the term-local jet at quadrature point `q` of element values `values`:
     /// $`j_i = \sum_{b} U^{f_i}_b\, B_{r_i b}`$, summed in local function order.
-    #[inline]
+    #[inline(always)]
     pub(super) fn jet_at<const B: usize, S: Scalar>(
         term: &TermData,
         values: &ElementValues,
@@ -101,7 +101,7 @@ impl<M: EnergyModel> Assembler<M> {
     }
 
     /// Internal force vector of element `e`, by field (`element[f][b]`, as [`Self::gather`]).
-    #[inline]
+    #[inline(always)]
     pub(super) fn element_internal_forces<E: Element, const B: usize, S: Scalar>(
         &self,
         e: usize,
@@ -136,6 +136,7 @@ impl<M: EnergyModel> Assembler<M> {
     /// the entry of local functions $`(k, l)`$ and fields $`(f_i, f_j)`$ is at
     /// `((fi * nf + fj) * B + k) * B + l`, so that each outer product adds to contiguous rows
     /// of `B` (which the compiler vectorises).
+    #[inline(always)]
     pub(super) fn element_tangent<E: Element, const B: usize, S: Scalar>(
         &self,
         e: usize,
@@ -162,11 +163,14 @@ impl<M: EnergyModel> Assembler<M> {
                     let (fi, ri) = term.rows[i];
                     let (fj, rj) = term.rows[j];
                     let c = hessian[p] * if i == j { 0.5 * w } else { w };
-                    let (bi, bj) = (&basis[ri], &basis[rj]);
+                    // Row `bj` copied to the stack: the compiler then knows the block's
+                    // stores cannot change it and updates a row several entries at a time.
+                    let (bi, bj) = (&basis[ri], basis[rj]);
                     let block = &mut element[(fi * nf + fj) * B * B..][..B * B];
-                    for (row, &b) in block.chunks_exact_mut(B).zip(bi.iter()) {
+                    let (rows, _) = block.as_chunks_mut::<B>();
+                    for (row, &b) in rows.iter_mut().zip(bi.iter()) {
                         let a = c * b;
-                        for (value, &b) in row.iter_mut().zip(bj.iter()) {
+                        for (value, &b) in row.iter_mut().zip(&bj) {
                             *value = *value + a * b;
                         }
                     }
@@ -179,7 +183,7 @@ impl<M: EnergyModel> Assembler<M> {
     /// Calls `add(slot, value)` for every entry of $`K^e = A + A^\top`$ (from
     /// [`Self::element_tangent`]) on the tangent's pattern, in the element's row-major local dof
     /// order (local dof = node, field, component).
-    #[inline]
+    #[inline(always)]
     pub(super) fn for_each_tangent_slot<E: Element, const B: usize, S: Scalar>(
         &self,
         e: usize,

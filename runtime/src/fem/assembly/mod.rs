@@ -335,8 +335,9 @@ impl<M: EnergyModel> Assembler<M> {
 
     fn internal_forces_on<E: Element, const B: usize, S: Scalar>(&self, global: &[S]) -> Vec<S> {
         let mut out = vec![S::zero(); self.dofs.free_count];
+        let wide = crate::simd::has_avx2();
         self.accumulate(&mut out, |e, sink| {
-            let element = self.element_internal_forces::<E, B, S>(e, global);
+            let element = self.element_internal_forces_wide::<E, B, S>(wide, e, global);
             self.for_each_free_dof::<E, B, S>(e, &element, |i, value| sink.add(i, value));
         });
         out
@@ -358,8 +359,9 @@ impl<M: EnergyModel> Assembler<M> {
     ) -> (Vec<f64>, Vec<f64>) {
         let n = self.dofs.free_count;
         let mut both = vec![0.0; 2 * n];
+        let wide = crate::simd::has_avx2();
         self.accumulate(&mut both, |e, sink| {
-            let element = self.element_internal_forces::<E, B, f64>(e, global);
+            let element = self.element_internal_forces_wide::<E, B, f64>(wide, e, global);
             self.for_each_free_dof::<E, B, f64>(e, &element, |i, value| {
                 sink.add(i, value);
                 sink.add(n + i, value.abs());
@@ -379,12 +381,77 @@ impl<M: EnergyModel> Assembler<M> {
 
     fn tangent_values_on<E: Element, const B: usize, S: Scalar>(&self, global: &[S]) -> Vec<S> {
         let mut out = vec![S::zero(); self.pattern.nnz()];
+        let wide = crate::simd::has_avx2();
         self.accumulate(&mut out, |e, sink| {
-            // A holds each pattern entry once (diagonal entries halved): K = A + Aᵀ.
-            let element = self.element_tangent::<E, B, S>(e, global);
-            self.for_each_tangent_slot::<E, B, S>(e, &element, |s, value| sink.add(s, value));
+            #[cfg(target_arch = "x86_64")]
+            if wide {
+                // SAFETY: the processor has AVX2.
+                unsafe { self.add_element_tangent_avx2::<E, B, S>(e, global, sink) };
+                return;
+            }
+            self.add_element_tangent::<E, B, S>(e, global, sink);
         });
         out
+    }
+
+    /// [`Self::element_internal_forces`], compiled for AVX2 when `wide` ([`crate::simd`]: the
+    /// same bits).
+    #[inline(always)]
+    fn element_internal_forces_wide<E: Element, const B: usize, S: Scalar>(
+        &self,
+        wide: bool,
+        e: usize,
+        global: &[S],
+    ) -> local::ElementLocal<S, B> {
+        #[cfg(target_arch = "x86_64")]
+        if wide {
+            // SAFETY: `wide` says the processor has AVX2.
+            return unsafe { self.element_internal_forces_avx2::<E, B, S>(e, global) };
+        }
+        let _ = wide;
+        self.element_internal_forces::<E, B, S>(e, global)
+    }
+
+    /// [`Self::element_internal_forces`] compiled for AVX2.
+    ///
+    /// # Safety
+    /// The processor must have AVX2 ([`crate::simd::has_avx2`]).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn element_internal_forces_avx2<E: Element, const B: usize, S: Scalar>(
+        &self,
+        e: usize,
+        global: &[S],
+    ) -> local::ElementLocal<S, B> {
+        self.element_internal_forces::<E, B, S>(e, global)
+    }
+
+    /// Adds element `e`'s tangent to `sink`. A holds each pattern entry once (diagonal entries
+    /// halved): $`K = A + A^\top`$.
+    #[inline(always)]
+    fn add_element_tangent<E: Element, const B: usize, S: Scalar>(
+        &self,
+        e: usize,
+        global: &[S],
+        sink: &mut ElementSink<S>,
+    ) {
+        let element = self.element_tangent::<E, B, S>(e, global);
+        self.for_each_tangent_slot::<E, B, S>(e, &element, |s, value| sink.add(s, value));
+    }
+
+    /// [`Self::add_element_tangent`] compiled for AVX2 ([`crate::simd`]: the same bits).
+    ///
+    /// # Safety
+    /// The processor must have AVX2 ([`crate::simd::has_avx2`]).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn add_element_tangent_avx2<E: Element, const B: usize, S: Scalar>(
+        &self,
+        e: usize,
+        global: &[S],
+        sink: &mut ElementSink<S>,
+    ) {
+        self.add_element_tangent::<E, B, S>(e, global, sink);
     }
 
     /// Assembles the `f64` tangent into `matrix` (which must be on [`Self::pattern`]).

@@ -1,9 +1,10 @@
 //! Taylor mode of the assembler: per-quadrature-point tapes of the models' Taylor-mode kernels
 //! and the sweeps that fill them and assemble the ANM's right-hand sides.
 
+use super::local::ElementLocal;
 use super::{Assembler, Parallelism};
 use crate::fem::element::{Element, with_element};
-use crate::model::{EnergyModel, MAX_JET};
+use crate::model::{EnergyModel, MAX_FIELDS, MAX_JET};
 use rayon::prelude::*;
 
 /// Where one taped term's points live inside an element's block of a [`TaylorTape`].
@@ -205,6 +206,7 @@ impl<M: EnergyModel> Assembler<M> {
         if tape.element_len > 0 {
             let orders = tape.orders;
             let layout = tape.layout.clone();
+            let wide = crate::simd::has_avx2();
             let work = |(block, forces): (&mut [f64], &mut [f64]), e: usize| {
                 let taped = TapedElement {
                     e,
@@ -212,6 +214,14 @@ impl<M: EnergyModel> Assembler<M> {
                     layout: &layout,
                     block,
                 };
+                #[cfg(target_arch = "x86_64")]
+                if wide {
+                    // SAFETY: the processor has AVX2.
+                    unsafe {
+                        self.element_taylor_forces_avx2::<E, B>(taped, order, commit, forces)
+                    };
+                    return;
+                }
                 self.element_taylor_forces::<E, B>(taped, order, commit, forces)
             };
             let pairs = tape
@@ -238,8 +248,26 @@ impl<M: EnergyModel> Assembler<M> {
         out
     }
 
-    /// Element `e`'s order-`order` Taylor forces by field (`forces[f * B + b]`), after the
-    /// optional commit of `(order − 1, increment)` at each of its taped points.
+    /// [`Self::element_taylor_forces`] compiled for AVX2 ([`crate::simd`]: the same bits).
+    ///
+    /// # Safety
+    /// The processor must have AVX2 ([`crate::simd::has_avx2`]).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn element_taylor_forces_avx2<E: Element, const B: usize>(
+        &self,
+        taped: TapedElement<'_>,
+        order: usize,
+        commit: Option<(usize, &[f64])>,
+        forces: &mut [f64],
+    ) {
+        self.element_taylor_forces::<E, B>(taped, order, commit, forces);
+    }
+
+    /// Element `e`'s order-`order` Taylor forces by field (`forces[f * B + b]`, which must be
+    /// zero on entry), after the optional commit of `(order − 1, increment)` at each of its
+    /// taped points.
+    #[inline(always)]
     fn element_taylor_forces<E: Element, const B: usize>(
         &self,
         taped: TapedElement<'_>,
@@ -255,6 +283,7 @@ impl<M: EnergyModel> Assembler<M> {
         } = taped;
         let mut residual = [0.0; MAX_JET];
         let mut jet = [0.0; MAX_JET];
+        let mut sums: ElementLocal<f64, B> = [[0.0; B]; MAX_FIELDS];
         let local = commit.map(|(_, increment)| self.gather::<E, B, f64>(e, increment));
         for entry in layout {
             let term = &self.terms[entry.term];
@@ -280,12 +309,16 @@ impl<M: EnergyModel> Assembler<M> {
                 let basis = values.point_basis::<B>(q);
                 for (&r, &(field, row)) in residual[..m].iter().zip(&term.rows) {
                     let r = r * w;
-                    let forces = &mut forces[field * B..][..B];
-                    for (f, &b) in forces.iter_mut().zip(&basis[row]) {
+                    for (f, &b) in sums[field].iter_mut().zip(&basis[row]) {
                         *f += r * b;
                     }
                 }
             }
+        }
+        // Summed on the stack (a row at a time, several entries at once), from zero as
+        // `forces` starts: the same sums.
+        for (forces, sums) in forces.chunks_exact_mut(B).zip(&sums) {
+            forces.copy_from_slice(sums);
         }
     }
 }
