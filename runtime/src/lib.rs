@@ -11,6 +11,7 @@ pub use model::{
 pub use scalar::Scalar;
 pub mod fem;
 pub mod linear;
+pub mod memo;
 pub mod problem;
 pub mod series;
 mod simd;

@@ -235,8 +235,13 @@ impl KernelWriter<'_> {
             }
             Operation::Apply(function, a) => {
                 let a = r(a);
-                let method = format_ident!("{}", function.name());
-                quote!(#a.#method())
+                let name = format_ident!("{}", function.name());
+                match function {
+                    // An instruction: nothing to remember.
+                    crate::graph::Function::Sqrt => quote!(#a.#name()),
+                    // The same argument at every point: remembered per thread.
+                    _ => quote!(::wrinkle_runtime::memo::#name(#a)),
+                }
             }
         }
     }
