@@ -219,6 +219,7 @@ pub fn compute_series<M: EnergyModel>(
     previous_direction: Option<(&[f64], f64)>,
     tape: &mut TaylorTape,
 ) -> Result<(PathSeries, Vec<f64>), SolveError> {
+    start_tape(problem, state, tape);
     series_with(
         problem,
         state,
@@ -230,11 +231,19 @@ pub fn compute_series<M: EnergyModel>(
     )
 }
 
+/// Starts the tape at `state` for a series there: order 0, then the order-1 prediction (zero:
+/// every coefficient of order 1 is linear in $`U_1`$, but the kernels record their partial
+/// sums).
+fn start_tape<M: EnergyModel>(problem: &Problem<M>, state: &PathState, tape: &mut TaylorTape) {
+    problem.taylor_start(&state.displacement, state.load, tape);
+    problem.taylor_residual(1, tape);
+}
+
 /// [`compute_series`], pushing its coefficients into `orthogonalized` when given, for the Padé
 /// approximants ([`PadeApproximant::orthogonalized`]): each $`V_{k-1}`$ is orthogonalised while
 /// the order-$`k`$ solve runs, on the core the solve leaves idle (the approximant's
 /// construction took 0.06 of a step's floor on the reference envelope at 128 × 64, after the
-/// series).
+/// series). The tape must have been started at `state` ([`start_tape`]).
 fn series_with<M: EnergyModel>(
     problem: &Problem<M>,
     state: &PathState,
@@ -247,9 +256,6 @@ fn series_with<M: EnergyModel>(
     let order = order.clamp(2, tape.highest_order());
     let (u_hat, lambda1) = first_order(problem, state, factor, previous_direction)?;
     let u1: Vec<f64> = u_hat.iter().map(|v| v * lambda1).collect();
-    problem.taylor_start(&state.displacement, state.load, tape);
-    // Order 1: the prediction is zero (every coefficient of order 1 is linear in U_1).
-    problem.taylor_residual(1, tape);
     let mut displacement = vec![state.displacement.clone(), u1];
     let mut load = vec![state.load, lambda1];
     for k in 2..=order {
@@ -448,6 +454,7 @@ fn follow_path_in<'scope, 'a: 'scope, M: EnergyModel>(
         warnings: Vec::new(),
         end_check: None,
         start_factorized: false,
+        tape_started_at: None,
     };
     run.linearization.statistics.tape_bytes = Some(run.tape.bytes());
     let start_residual = run
@@ -519,6 +526,10 @@ struct AnmRun<'scope, 'a: 'scope, M: EnergyModel> {
     /// The tangent at the current start is already assembled and factorised (by the end check
     /// of the previous step).
     start_factorized: bool,
+    /// The load of the step end the tape was last started at (beside that end's
+    /// factorisation, [`Self::jumped_over_critical_point`]); the next series skips the start
+    /// when it is the current start's.
+    tape_started_at: Option<f64>,
 }
 
 /// How a step's end point was accepted.
@@ -620,6 +631,13 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
             .as_ref()
             .map(|(u, l)| (u.as_slice(), *l));
         let mut orthogonalized = self.options.pade.then(GramSchmidt::new);
+        let tape_started = self
+            .tape_started_at
+            .take()
+            .is_some_and(|load| load.to_bits() == self.state.load.to_bits());
+        if !tape_started {
+            start_tape(self.linearization.problem(), &self.state, &mut self.tape);
+        }
         let (series, u_hat) = series_with(
             self.linearization.problem(),
             &self.state,
@@ -721,7 +739,9 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
     /// the factorisation runs on one core, the interior points' residual checks on the other
     /// (the values do not depend on it, each residual is the same sum on any number of
     /// threads). On the plate of example 1 that hides 0.08 of a step's floor (10 residuals a
-    /// step).
+    /// step). The tape is started at the end there too, the two sweeps the next step's series
+    /// would begin with (its order 0 and the order-1 prediction; [`Self::tape_started_at`]):
+    /// 0.03 of the reference envelope's floor.
     fn jumped_over_critical_point(
         &mut self,
         step: usize,
@@ -748,12 +768,21 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
                     "ANM step {step}: symbolic analysis for the end-point check"
                 )))?,
         };
+        // Beside the factorisation too: the tape started at the end, for the next step's
+        // series should the end be its start (it is the last end checked in a step).
+        let tape = &mut self.tape;
+        let alongside = || {
+            let checked = interior();
+            start_tape(problem, end, tape);
+            checked
+        };
         let (factorized, (points, _), added) = self.linearization.factorize_spare_alongside(
             &mut spare,
             &end.displacement,
             end.load,
-            interior,
+            alongside,
         );
+        self.tape_started_at = Some(end.load);
         // Counted as residual checks; their time only where it outlasted the factorisation.
         self.linearization.statistics.residual_assemblies += points.len();
         self.linearization.statistics.residual_seconds += added;
