@@ -66,7 +66,7 @@ pub const TARGET_AMPLITUDE: f64 = 2.0;
 pub const RIKS_MAX_STEPS: usize = 3000;
 
 /// The columns of `bench.csv`, in order.
-pub const CSV_COLUMNS: [&str; 34] = [
+pub const CSV_COLUMNS: [&str; 35] = [
     "model",
     "sweep",
     "method",
@@ -80,6 +80,7 @@ pub const CSV_COLUMNS: [&str; 34] = [
     "wavenumber_fixed",
     "steps",
     "factorizations",
+    "prediction_factorizations",
     "time_threshold",
     "time_path",
     "time_total",
@@ -292,6 +293,7 @@ fn run_point(
         wavenumber_fixed: wavenumber.is_some(),
         steps: None,
         factorizations: None,
+        prediction_factorizations: None,
         time_threshold: None,
         time_path: None,
         time_total: None,
@@ -324,6 +326,7 @@ fn fill_row(row: &mut BenchRow, summary: &RunSummary) {
     row.wavenumber = summary.wavenumber.filter(|q| q.is_finite());
     row.steps = Some(summary.steps);
     row.factorizations = Some(summary.statistics.factorizations);
+    row.prediction_factorizations = Some(summary.statistics.prediction_factorizations);
     row.time_threshold = finite(timings.threshold);
     row.time_path = finite(timings.path);
     row.time_total = finite(timings.total);
@@ -377,6 +380,7 @@ pub fn bench_csv(bench: &Bench) -> String {
             row.wavenumber_fixed.to_string(),
             count_cell(row.steps),
             count_cell(row.factorizations),
+            count_cell(row.prediction_factorizations),
             number_cell(row.time_threshold),
             number_cell(row.time_path),
             number_cell(row.time_total),
@@ -464,12 +468,20 @@ fn per_step(total: Option<f64>, steps: Option<usize>) -> String {
     }
 }
 
+/// The factorisations whose time is in `timings.factorization`: all but the bifurcation
+/// predictions' (timed in `timings.bifurcation_prediction`; a prediction on a thread of its own
+/// takes no time of the path's).
+fn timed_factorizations(factorizations: usize, predictions: Option<usize>) -> usize {
+    factorizations.saturating_sub(predictions.unwrap_or(0))
+}
+
 /// One step's time over one factorisation's:
 /// $`(t_\text{path}/n_\text{steps}) / (t_\text{fact}/n_\text{fact})`$ (the ANM's promise is a
 /// step that costs little more than its factorisation).
 pub fn step_over_factorization(row: &BenchRow) -> Option<f64> {
     let (path, steps) = (row.time_path?, row.steps?);
-    let (factorization, count) = (row.cost.time_factorization?, row.factorizations?);
+    let factorization = row.cost.time_factorization?;
+    let count = timed_factorizations(row.factorizations?, row.prediction_factorizations);
     (steps > 0 && count > 0 && factorization > 0.0)
         .then(|| (path / steps as f64) / (factorization / count as f64))
         .filter(|r| r.is_finite())
@@ -482,7 +494,11 @@ pub fn step_over_factorization(row: &BenchRow) -> Option<f64> {
 /// (Riks).
 fn step_floor(summary: &RunSummary, order: usize) -> Option<f64> {
     let (statistics, timings) = (&summary.statistics, &summary.timings);
-    let (factorizations, solves) = (statistics.factorizations, statistics.series_assemblies);
+    let factorizations = timed_factorizations(
+        statistics.factorizations,
+        Some(statistics.prediction_factorizations),
+    );
+    let solves = statistics.series_assemblies;
     (factorizations > 0 && solves > 0 && order > 1).then(|| {
         timings.factorization / factorizations as f64
             + (order - 1) as f64 * timings.series_solves / solves as f64

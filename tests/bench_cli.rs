@@ -6,7 +6,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-const COLUMNS: [&str; 34] = [
+const COLUMNS: [&str; 35] = [
     "model",
     "sweep",
     "method",
@@ -20,6 +20,7 @@ const COLUMNS: [&str; 34] = [
     "wavenumber_fixed",
     "steps",
     "factorizations",
+    "prediction_factorizations",
     "time_threshold",
     "time_path",
     "time_total",
@@ -100,6 +101,10 @@ fn check_cost_split(row: &[String], number: &dyn Fn(&str) -> Option<f64>) {
         number("time_series_solves").unwrap(),
     );
     assert!((0.0..=series).contains(&solves), "{row:?}");
+    // The predictions' factorisations are some of the path's, timed apart.
+    let factorizations = number("factorizations").unwrap();
+    let predictions = number("prediction_factorizations").unwrap();
+    assert!((0.0..=factorizations).contains(&predictions), "{row:?}");
     let dofs = number("dofs").unwrap();
     let factor = number("factor_nonzeros").unwrap();
     assert!(

@@ -30,6 +30,8 @@ pub struct BenchRow {
     pub steps: Option<usize>,
     /// Factorisations of the tangent along the path.
     pub factorizations: Option<usize>,
+    /// Of `factorizations`, the bifurcation predictions' (timed in `time_bifurcation`).
+    pub prediction_factorizations: Option<usize>,
     /// Wall time of the threshold (buckling and wavenumber search), s.
     pub time_threshold: Option<f64>,
     /// Wall time of the path following, s.
@@ -68,7 +70,8 @@ pub struct CostSplit {
     pub time_recording: Option<f64>,
     /// A step's floor (issue 30): one factorisation plus the $`N - 1`$ series solves with it,
     /// $`t_\text{fact}/n_\text{fact} + (N-1)\,t_\text{solves}/n_\text{solves}`$ from the
-    /// run's own means (empty for Riks, which has no series).
+    /// run's own means, $`n_\text{fact}`$ without the predictions' factorisations (empty for
+    /// Riks, which has no series).
     pub time_step_floor: Option<f64>,
     /// Peak resident memory of the run, MB ($`10^6`$ bytes; Linux only).
     pub peak_memory_mb: Option<f64>,

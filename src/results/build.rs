@@ -59,6 +59,7 @@ impl RunSummary {
             steps: stats.steps,
             statistics: PathCounts {
                 factorizations: stats.factorizations,
+                prediction_factorizations: stats.prediction_factorizations,
                 tangent_assemblies: stats.tangent_assemblies,
                 residual_assemblies: stats.residual_assemblies,
                 series_assemblies: stats.series_assemblies,

@@ -111,6 +111,9 @@ pub struct LossOfEllipticity {
 pub struct PathCounts {
     /// Numeric factorisations of the tangent.
     pub factorizations: usize,
+    /// Of `factorizations`, the bifurcation predictions' and locations' (timed in
+    /// `timings.bifurcation_prediction`, not in `timings.factorization`).
+    pub prediction_factorizations: usize,
     /// Tangent assemblies.
     pub tangent_assemblies: usize,
     /// Residual assemblies.

@@ -809,6 +809,7 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
         let problem = self.linearization.problem();
         let same_analysis = self.linearization.factor().same_analysis();
         let statistics = &mut self.linearization.statistics;
+        let counted = statistics.factorizations;
         let located = same_analysis
             .map_err(SolveError::linear(
                 "locating a critical point: symbolic analysis",
@@ -838,6 +839,7 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
                 )
             });
         statistics.bifurcation_seconds += t.elapsed().as_secs_f64();
+        statistics.prediction_factorizations += statistics.factorizations - counted;
         match located {
             Ok(load) => self.bifurcation = Some((load, crossed_in)),
             Err(error) => self.warnings.push(format!(
@@ -969,7 +971,9 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
         steps_log: &mut [AnmStep],
     ) -> Option<f64> {
         let (step, logged, start_load) = made;
-        self.linearization.statistics.factorizations += outcome.factorizations;
+        let statistics = &mut self.linearization.statistics;
+        statistics.factorizations += outcome.factorizations;
+        statistics.prediction_factorizations += outcome.factorizations;
         match outcome.load {
             Ok(load) => {
                 self.prediction = Some(load);

@@ -76,6 +76,10 @@ pub struct PathStatistics {
     pub steps: usize,
     /// Numeric factorisations of the tangent.
     pub factorizations: usize,
+    /// Of `factorizations`, those of the bifurcation predictions and of locating a crossed
+    /// critical point (a shifted tangent, or the tangent at an earlier point): timed in
+    /// `bifurcation_seconds`, not in `factorization_seconds`, whose mean is over the others.
+    pub prediction_factorizations: usize,
     /// Tangent assemblies.
     pub tangent_assemblies: usize,
     /// `f64` residual assemblies.
@@ -126,6 +130,7 @@ impl PathStatistics {
     /// arc-length correction's Newton iterations inside an ANM step).
     pub fn add_linear_work(&mut self, work: &PathStatistics) {
         self.factorizations += work.factorizations;
+        self.prediction_factorizations += work.prediction_factorizations;
         self.tangent_assemblies += work.tangent_assemblies;
         self.residual_assemblies += work.residual_assemblies;
         self.residual_seconds += work.residual_seconds;
