@@ -141,6 +141,32 @@ fn every_method_lands_on_the_amplitude_target() {
     }
 }
 
+/// The ANM lands inside the step it stopped in, on the step's own approximant: no
+/// factorisation more than the same path without a landing, when its points meet the landing
+/// corrector's tolerance (as in `wrinkle run`, where both are `solver.tolerance`; the landed
+/// point is on the exact path by the test above); Riks corrects a chord and refactorises.
+#[test]
+fn the_anm_lands_along_its_last_step_without_a_factorisation() {
+    let problem = strip_problem(HARDENING, 4);
+    let target = 0.8;
+    for (name, mut method) in methods() {
+        if let FollowMethod::Anm(anm) = &mut method {
+            // The landing corrector's tolerance (`follow`).
+            anm.residual_tolerance = 1e-10;
+        }
+        let (landed, recorder) = follow(&problem, method.clone(), target, true);
+        let (kept, _) = follow(&problem, method, target, false);
+        assert_eq!(recorder.replaced.len(), 1, "{name}: one landing");
+        let landing =
+            landed.result.statistics.factorizations - kept.result.statistics.factorizations;
+        if name == "Riks" {
+            assert!(landing >= 1, "{name}: {landing} factorisations to land");
+        } else {
+            assert_eq!(landing, 0, "{name}: {landing} factorisations to land");
+        }
+    }
+}
+
 #[test]
 fn an_observer_that_declines_the_landing_keeps_the_overshooting_point() {
     let problem = strip_problem(HARDENING, 4);

@@ -225,8 +225,8 @@ scene_schema! {
         /// stop when the maximum **physical** wrinkle amplitude over the thickness reaches
         /// this: $`\max|w|/h`$ for a plate, $`2\max|w_\text{env}|/h`$ for envelope models; the
         /// path's first point past it (a Riks step end, or the ANM's next dense-output point)
-        /// is moved back onto it by arc-length corrections, so that the last point lies within
-        /// $`10^{-3}`$ relative above it
+        /// is moved back onto it — along the ANM step's own series, or by arc-length
+        /// corrections — so that the last point lies within $`10^{-3}`$ relative above it
         max_amplitude_over_h => max_amplitude_over_thickness: f64 = 4.0,
             Float::above(0.0).at_most(100.0).because(
                 "the models hold for moderate rotations, a few thicknesses of deflection"

@@ -370,11 +370,7 @@ impl StepApproximant<'_> {
     }
 
     fn evaluate(&self, a: f64) -> PathState {
-        let (displacement, load) = match self.pade_at(a) {
-            Some(pade) => pade.evaluate(a),
-            None => self.series.evaluate(a),
-        };
-        PathState { displacement, load }
+        evaluate_approximant(self.series, self.plain, self.pade.as_ref(), a)
     }
 
     /// The path tangent at `a`, from the approximant evaluated there: beyond the series' range
@@ -384,6 +380,40 @@ impl StepApproximant<'_> {
             Some(pade) => pade.evaluate_derivative(a),
             None => self.series.evaluate_derivative(a),
         }
+    }
+}
+
+/// A step's approximant at `a`: the Padé approximant beyond the series' range `plain` when
+/// there is one, else the series.
+fn evaluate_approximant(
+    series: &PathSeries,
+    plain: f64,
+    pade: Option<&(PadeApproximant, f64)>,
+    a: f64,
+) -> PathState {
+    let (displacement, load) = match pade.filter(|_| a > plain) {
+        Some((pade, _)) => pade.evaluate(a),
+        None => series.evaluate(a),
+    };
+    PathState { displacement, load }
+}
+
+/// The approximant of the step a path stopped in (the observer stopped it at a point of that
+/// step), with the path parameters of the last two points it reported: a landing on a target
+/// between them evaluates the step there instead of correcting a chord
+/// ([`land_on_step`](super::landing::land_on_step)).
+pub struct StepTail {
+    series: PathSeries,
+    plain: f64,
+    pade: Option<(PadeApproximant, f64)>,
+    /// Parameters $`a`$ of the point reported before the stop and of the stop.
+    pub bracket: (f64, f64),
+}
+
+impl StepTail {
+    /// The step's point at parameter `a` (as the step evaluated its own points).
+    pub fn evaluate(&self, a: f64) -> PathState {
+        evaluate_approximant(&self.series, self.plain, self.pade.as_ref(), a)
     }
 }
 
@@ -420,6 +450,19 @@ pub fn follow_path_anm<M: EnergyModel>(
     observer: &mut dyn FnMut(&PathEvent) -> PathControl,
     steps_log: &mut Vec<AnmStep>,
 ) -> PathResult {
+    follow_path_anm_to_tail(problem, start, factor, options, observer, steps_log).0
+}
+
+/// [`follow_path_anm`], with the approximant of the step the observer stopped the path in, if
+/// it did ([`StepTail`]).
+pub fn follow_path_anm_to_tail<M: EnergyModel>(
+    problem: &Problem<M>,
+    start: PathState,
+    factor: &mut SparseFactorization,
+    options: &AnmOptions,
+    observer: &mut dyn FnMut(&PathEvent) -> PathControl,
+    steps_log: &mut Vec<AnmStep>,
+) -> (PathResult, Option<StepTail>) {
     std::thread::scope(|scope| {
         follow_path_in(scope, problem, start, factor, options, observer, steps_log)
     })
@@ -435,7 +478,7 @@ fn follow_path_in<'scope, 'a: 'scope, M: EnergyModel>(
     options: &'a AnmOptions,
     observer: &mut dyn FnMut(&PathEvent) -> PathControl,
     steps_log: &mut Vec<AnmStep>,
-) -> PathResult {
+) -> (PathResult, Option<StepTail>) {
     let mut run = AnmRun {
         scope,
         pending: None,
@@ -455,6 +498,7 @@ fn follow_path_in<'scope, 'a: 'scope, M: EnergyModel>(
         end_check: None,
         start_factorized: false,
         tape_started_at: None,
+        tail: None,
     };
     run.linearization.statistics.tape_bytes = Some(run.tape.bytes());
     let start_residual = run
@@ -530,6 +574,8 @@ struct AnmRun<'scope, 'a: 'scope, M: EnergyModel> {
     /// factorisation, [`Self::jumped_over_critical_point`]); the next series skips the start
     /// when it is the current start's.
     tape_started_at: Option<f64>,
+    /// The step the observer stopped the path in.
+    tail: Option<StepTail>,
 }
 
 /// How a step's end point was accepted.
@@ -542,19 +588,24 @@ struct AcceptedEnd {
 }
 
 impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
-    fn finish(mut self, stop: PathStop, steps_log: &mut [AnmStep]) -> PathResult {
+    fn finish(
+        mut self,
+        stop: PathStop,
+        steps_log: &mut [AnmStep],
+    ) -> (PathResult, Option<StepTail>) {
         self.collect_prediction(steps_log);
         let factor_nonzeros = self.linearization.factor().factor_nnz();
         let mut statistics = self.linearization.statistics;
         statistics.total_seconds = self.begin.elapsed().as_secs_f64();
         statistics.factor_nonzeros = Some(factor_nonzeros);
-        PathResult {
+        let result = PathResult {
             last: self.state,
             statistics,
             stop,
             bifurcation: self.bifurcation,
             warnings: self.warnings,
-        }
+        };
+        (result, self.tail)
     }
 
     /// One step: factorise, series, bifurcation bookkeeping, step length, end point, dense
@@ -588,13 +639,24 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
             negative_pivots: self.negative_pivots,
             completed: true,
         };
-        if let Some(stop) = self.dense_output(step, interior, predicted, observer) {
-            // Stopped at an interior point: the step is logged up to there.
-            record.load_range.1 = self.state.load;
-            record.completed = false;
-            steps_log.push(record);
-            return Ok(Some(stop));
-        }
+        let last_reported =
+            match self.dense_output(step, interior, end.step_length, predicted, observer) {
+                Ok(last) => last,
+                Err((stop, bracket)) => {
+                    // Stopped at an interior point: the step is logged up to there.
+                    record.load_range.1 = self.state.load;
+                    record.completed = false;
+                    steps_log.push(record);
+                    let StepApproximant { plain, pade, .. } = approximant;
+                    self.tail = Some(StepTail {
+                        series,
+                        plain,
+                        pade,
+                        bracket,
+                    });
+                    return Ok(Some(stop));
+                }
+            };
         if let Some(p) = self.prediction
             && self.bifurcation.is_none()
             && end.state.load >= p
@@ -616,6 +678,13 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
             predicted_bifurcation: predicted,
         };
         if observer(&event) == PathControl::Stop {
+            let StepApproximant { plain, pade, .. } = approximant;
+            self.tail = Some(StepTail {
+                series,
+                plain,
+                pade,
+                bracket: (last_reported, end.step_length),
+            });
             return Ok(Some(PathStop::Observer));
         }
         Ok(end.hit_max_load.then_some(PathStop::MaxLoad))
@@ -1154,19 +1223,27 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
         })
     }
 
-    /// The step's interior points ([`interior_points`]); only those at the residual tolerance
-    /// are reported.
+    /// The step's interior points ([`interior_points`], over a step of length `length`); only
+    /// those at the residual tolerance are reported. Returns the path parameter of the last
+    /// point reported (0, the step's start, when none was), or the observer's stop with the
+    /// parameters of the point reported before it and of its own.
     fn dense_output(
         &mut self,
         step: usize,
         interior: Vec<InteriorPoint>,
+        length: f64,
         predicted: Option<f64>,
         observer: &mut dyn FnMut(&PathEvent) -> PathControl,
-    ) -> Option<PathStop> {
-        for (inner, residual) in interior {
+    ) -> Result<f64, (PathStop, (f64, f64))> {
+        // The parameter of the last point reported: the step's start, then each interior
+        // point's (equally spaced over the step, `interior_points`).
+        let mut reported = 0.0;
+        let count = interior.len();
+        for (k, (inner, residual)) in interior.into_iter().enumerate() {
             if residual.is_nan() || residual > self.options.residual_tolerance {
                 continue;
             }
+            let a = length * (k + 1) as f64 / (count + 1) as f64;
             let event = PathEvent {
                 step,
                 interior: true,
@@ -1177,10 +1254,11 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
             if observer(&event) == PathControl::Stop {
                 self.linearization.statistics.steps = step;
                 self.state = inner;
-                return Some(PathStop::Observer);
+                return Err((PathStop::Observer, (reported, a)));
             }
+            reported = a;
         }
-        None
+        Ok(reported)
     }
 }
 

@@ -18,9 +18,9 @@
 
 use std::time::Instant;
 
-use super::anm::{AnmOptions, AnmStep, follow_path_anm};
+use super::anm::{AnmOptions, AnmStep, StepTail, follow_path_anm_to_tail};
 use super::arc_length::ArcCorrectorOptions;
-use super::landing::{LandingTarget, land};
+use super::landing::{LandingTarget, land, land_on_step};
 use super::linearization::Linearization;
 use super::path::{PathControl, PathEvent, PathResult, PathState, PathStop};
 use super::riks::{RiksOptions, follow_path_riks};
@@ -90,16 +90,19 @@ pub fn follow_path<M: EnergyModel>(
 ) -> FollowedPath {
     let mut recent = RecentPoints::default();
     let mut anm_steps = Vec::new();
-    let mut result = {
+    let (mut result, tail) = {
         let mut watch = |event: &PathEvent| {
             recent.record(event);
             observer.observe(event)
         };
         match &options.method {
             FollowMethod::Anm(anm) => {
-                follow_path_anm(problem, start, factor, anm, &mut watch, &mut anm_steps)
+                follow_path_anm_to_tail(problem, start, factor, anm, &mut watch, &mut anm_steps)
             }
-            FollowMethod::Riks(riks) => follow_path_riks(problem, start, factor, riks, &mut watch),
+            FollowMethod::Riks(riks) => (
+                follow_path_riks(problem, start, factor, riks, &mut watch),
+                None,
+            ),
         }
     };
     if let Some(target) = landing_target(&result.stop, options)
@@ -110,7 +113,7 @@ pub fn follow_path<M: EnergyModel>(
             factor,
             options,
             target,
-            recent,
+            (recent, tail),
             observer,
             &mut result,
         );
@@ -128,14 +131,16 @@ fn landing_target(stop: &PathStop, options: &FollowOptions) -> Option<LandingTar
     }
 }
 
-/// Lands the last of the `recent` points on `target` ([`land`]); a landed point replaces it
-/// in the observer and in `result`, whose statistics receive the landing's work and time.
+/// Lands the last of the `recent` points on `target` — on the ANM step the path stopped in
+/// when there is one ([`land_on_step`]: no correction), else by correcting chords ([`land`]);
+/// a landed point replaces it in the observer and in `result`, whose statistics receive the
+/// landing's work and time.
 fn land_last_point<M: EnergyModel>(
     problem: &Problem<M>,
     factor: &mut SparseFactorization,
     options: &FollowOptions,
     target: LandingTarget,
-    recent: RecentPoints,
+    (recent, tail): (RecentPoints, Option<StepTail>),
     observer: &mut dyn PathObserver,
     result: &mut PathResult,
 ) {
@@ -149,14 +154,18 @@ fn land_last_point<M: EnergyModel>(
             LandingTarget::Amplitude(_) => observer.amplitude(state),
             LandingTarget::Load(_) => state.load,
         };
-        land(
-            &mut linearization,
-            &below,
-            &above,
-            target,
-            &measure,
-            &options.landing_corrector,
-        )
+        let tolerance = options.landing_corrector.tolerance;
+        tail.and_then(|tail| land_on_step(&mut linearization, &tail, target, &measure, tolerance))
+            .or_else(|| {
+                land(
+                    &mut linearization,
+                    &below,
+                    &above,
+                    target,
+                    &measure,
+                    &options.landing_corrector,
+                )
+            })
     };
     result.statistics.add_linear_work(&linearization.statistics);
     let Some(landed) = landed else {

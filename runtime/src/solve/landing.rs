@@ -7,9 +7,13 @@
 //!   bracket narrowed by regula falsi (Illinois) until the measure lies within the target's
 //!   window ([`LandingTarget`]). Any path method's last two points will do: Riks' step ends,
 //!   the ANM's dense output.
+//! * [`land_on_step`]: the ANM's landing on an amplitude inside the step it stopped in, on the
+//!   step's own approximant (regula falsi on the path parameter, one residual check): no
+//!   correction, hence no factorisation, unless that fails and [`land`] takes over.
 //! * [`parameter_at_load`]: the ANM's landing on `max_load` inside a step, where the series
 //!   is evaluated at any path parameter: bisection for $`\lambda(a) = \lambda_\text{max}`$.
 
+use super::anm::StepTail;
 use super::arc_length::{ArcCorrection, ArcCorrectorOptions, correct_on_arc};
 use super::linearization::Linearization;
 use super::path::PathState;
@@ -94,6 +98,67 @@ pub fn land<M: EnergyModel>(
             return Some(corrected);
         }
         bracket.narrow(miss, corrected.state);
+    }
+    None
+}
+
+/// Regula falsi steps of [`land_on_step`].
+const MAX_STEP_LANDING_ITERATIONS: usize = 40;
+
+/// Lands on an amplitude `target` inside the ANM step the path stopped in: the point of the
+/// step's own approximant ([`StepTail`]) between the last two points reported where `measure`
+/// meets the middle of the target's window, found by regula falsi (Illinois) on the path
+/// parameter — no correction, no factorisation: the step evaluates it as it evaluated its
+/// points. `None` (then [`land`] corrects a chord) when the two points do not bracket the aim
+/// on the approximant, no parameter lands within [`MAX_STEP_LANDING_ITERATIONS`], or the
+/// point's relative residual (counted in `linearization`) is above `tolerance`.
+pub fn land_on_step<M: EnergyModel>(
+    linearization: &mut Linearization<'_, M>,
+    tail: &StepTail,
+    target: LandingTarget,
+    measure: &dyn Fn(&PathState) -> f64,
+    tolerance: f64,
+) -> Option<ArcCorrection> {
+    let LandingTarget::Amplitude(value) = target else {
+        return None;
+    };
+    let window = target.tolerance() * value.abs();
+    let aim = value + 0.5 * window;
+    let (mut low, mut high) = tail.bracket;
+    let mut low_miss = measure(&tail.evaluate(low)) - aim;
+    let mut high_miss = measure(&tail.evaluate(high)) - aim;
+    if !(low_miss < 0.0 && high_miss > 0.0) {
+        return None;
+    }
+    let mut side = 0;
+    for _ in 0..MAX_STEP_LANDING_ITERATIONS {
+        let a = low + low_miss / (low_miss - high_miss) * (high - low);
+        let state = tail.evaluate(a);
+        let miss = measure(&state) - aim;
+        if !miss.is_finite() {
+            return None;
+        }
+        if miss.abs() <= 0.5 * window {
+            let relative = linearization.relative_residual(&state.displacement, state.load);
+            return (relative <= tolerance).then_some(ArcCorrection {
+                state,
+                iterations: 0,
+                relative_residual: relative,
+            });
+        }
+        if miss > 0.0 {
+            (high, high_miss) = (a, miss);
+            if side == 1 {
+                low_miss *= 0.5;
+            }
+            side = 1;
+        } else {
+            (low, low_miss) = (a, miss);
+            if side == -1 {
+                high_miss *= 0.5;
+            }
+            side = -1;
+        }
     }
     None
 }
