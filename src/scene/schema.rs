@@ -123,8 +123,9 @@ scene_schema! {
         /// $`\lambda_c(Q)`$ has no minimum in the search range, and the shift guess of a
         /// buckling analysis that fails about $`\lambda = 0`$ (a plate, a strip in tension); it
         /// must select its own wavelength (an envelope with gradient and no phase). Its
-        /// threshold is computed once per run, only when needed; a run of this model itself
-        /// uses none
+        /// threshold is computed once per run, only when needed (for a shift guess, only its
+        /// critical load to 1e-3: the search's global level on the half mesh and one analysis
+        /// on the mesh); a run of this model itself uses none
         wavenumber_model => wavenumber_model: String = REFERENCE_MODEL.to_string(),
             ModelName, Unit::NONE;
         /// angle of the wave vector from the X axis (example 2 uses 90), or `"auto"`: the angle

@@ -9,10 +9,12 @@ use crate::setup::build_problem;
 use wrinkle_runtime::EnergyModel;
 use wrinkle_runtime::linear::factor::SparseFactorization;
 use wrinkle_runtime::problem::Problem;
+use wrinkle_runtime::solve::buckling::linear_buckling;
 use wrinkle_runtime::solve::wavenumber::{
-    LocalGuess, WavenumberEvaluation, WavenumberSearch, WavenumberSearchOptions,
-    minimise_critical_load,
+    LOCAL_SHIFT, LocalGuess, WavenumberEvaluation, WavenumberSearch, WavenumberSearchOptions,
+    minimise_critical_load, set_model_parameter,
 };
+use wrinkle_runtime::wavelength::WAVENUMBER_PARAMETER;
 
 /// Relative accuracy of $`Q`$ on the coarse mesh of the two-level search.
 const COARSE_RELATIVE_TOLERANCE: f64 = 1e-2;
@@ -123,6 +125,64 @@ pub(super) fn two_level_search<M: EnergyModel>(
         search.evaluations = direct_evaluations;
     }
     Ok(search)
+}
+
+/// An estimate of the minimum of $`\lambda_c(Q)`$ over `options.range`, for the shift of
+/// another model's buckling analysis ([`WavenumberModel::critical_load_estimate`]): the global
+/// level of [`two_level_search`] (the scan and refinement to 1 % in $`Q`$ on the half mesh),
+/// then one analysis on `problem` at its minimiser, shifted about the half mesh's
+/// $`\lambda_c`$. $`\lambda_c`$ is flat at its minimum ($`\delta\lambda_c/\lambda_c \approx
+/// 2(\delta Q/Q)^2`$, [`FINE_RELATIVE_TOLERANCE`]), so that is the threshold to within 1e-3
+/// (5e-7 on the long strip at 112 × 64, 6e-4 on its shipped 56 × 16 graded mesh, whose half
+/// mesh shifts the minimiser more), without the real mesh's refinement. On a mesh too
+/// coarse to halve, the search to 1 % on `problem`; the half mesh's $`\lambda_c`$ when the
+/// analysis at its minimiser fails.
+///
+/// [`WavenumberModel::critical_load_estimate`]: super::wavenumber_model::WavenumberModel::critical_load_estimate
+pub(super) fn estimate_minimum<M: EnergyModel>(
+    scene: &Scene,
+    problem: &mut Problem<M>,
+    factor: &mut SparseFactorization,
+    options: &WavenumberSearchOptions,
+    observer: &mut dyn FnMut(&WavenumberEvaluation),
+) -> Result<f64, Error> {
+    let solve_error = |e: wrinkle_runtime::solve::SolveError| Error::Solver(e.to_string());
+    let options = &WavenumberSearchOptions {
+        relative_tolerance: COARSE_RELATIVE_TOLERANCE,
+        ..closed_form_start(scene, options)
+    };
+    let Some(coarse) = coarse_scene(scene) else {
+        let found =
+            minimise_critical_load(problem, factor, options, observer).map_err(solve_error)?;
+        return lowest_load(&found);
+    };
+    let mut coarse_problem = build_problem(&coarse, problem.assembler.model().clone())?;
+    let mut coarse_factor = analyse(&coarse_problem)?;
+    let first = minimise_critical_load(&mut coarse_problem, &mut coarse_factor, options, observer)
+        .map_err(solve_error)?;
+    let coarse_load = lowest_load(&first)?;
+    set_model_parameter(problem, WAVENUMBER_PARAMETER, first.parameter)
+        .map_err(|e| Error::Solver(e.to_string()))?;
+    let shifted = super::steps::threshold_buckling(LOCAL_SHIFT * coarse_load);
+    Ok(match linear_buckling(problem, factor, &shifted) {
+        Ok(buckling) if factor.negative_pivots() == Some(0) => buckling
+            .critical_loads
+            .first()
+            .copied()
+            .filter(|load| load.is_finite() && *load > 0.0)
+            .unwrap_or(coarse_load),
+        _ => coarse_load,
+    })
+}
+
+/// The lowest critical load of a search's analysis at its minimiser.
+fn lowest_load(search: &WavenumberSearch) -> Result<f64, Error> {
+    search
+        .buckling
+        .critical_loads
+        .first()
+        .copied()
+        .ok_or_else(|| Error::Solver("the wavenumber search found no critical load".into()))
 }
 
 /// The real mesh's local refinement about `q` (a minimiser found on the half mesh, or the

@@ -441,8 +441,9 @@ impl ThresholdSteps<'_> {
     /// Linear buckling about $`\lambda = 0`$; if that fails (a small compressed zone whose
     /// negative end of the spectrum hides behind a large positive one, as in a strip in
     /// tension), again about $`\sigma = 0.8\,\lambda_g`$ with $`\lambda_g`$ the wavenumber
-    /// model's threshold on the same scene: shift-invert about $`\sigma`$ makes the wanted load
-    /// factors the dominant end of the spectrum. The second attempt exists only when there is a
+    /// model's threshold on the same scene, estimated
+    /// ([`WavenumberModel::critical_load_estimate`]): shift-invert about $`\sigma`$ makes the
+    /// wanted load factors the dominant end of the spectrum. The second attempt exists only when there is a
     /// wavenumber model (the scene's model is not that model); the first then spends
     /// [`FIRST_ATTEMPT_RESTARTS`] restarts, not the whole budget. Returns the analysis and the
     /// load it linearised about.
@@ -463,17 +464,14 @@ impl ThresholdSteps<'_> {
         };
         let guess = self
             .wavenumber_model
-            .and_then(|model| Some((model.name(), model.threshold(self.quiet).ok()?)))
-            .filter(|(_, carrier)| {
-                carrier.critical_load.is_finite() && carrier.critical_load > 0.0
-            });
-        let Some((name, carrier)) = guess else {
+            .and_then(|model| Some((model.name(), model.critical_load_estimate(self.quiet).ok()?)))
+            .filter(|(_, load)| load.is_finite() && *load > 0.0);
+        let Some((name, guess)) = guess else {
             return Err(Error::Solver(format!(
                 "linear buckling: {first}{}",
                 poisson_hint(scene)
             )));
         };
-        let guess = carrier.critical_load;
         let shift = SHIFT_FRACTION * guess;
         let shifted = threshold_buckling(shift);
         let buckling = linear_buckling(problem, factor, &shifted).map_err(|second| {
@@ -504,15 +502,14 @@ const FLOOR_APPLICATIONS: usize = 10;
 impl ThresholdSteps<'_> {
     /// A guess of the critical load of a model that resolves its wrinkles on the mesh, and where
     /// it comes from: the minimum of eq. (42) where the closed form applies (free), otherwise
-    /// the wavenumber model's threshold on the same scene (computed once per run); `None` when
-    /// there is neither.
+    /// the wavenumber model's threshold on the same scene, estimated once per run
+    /// ([`WavenumberModel::critical_load_estimate`]); `None` when there is neither.
     fn threshold_guess(&self) -> Option<(f64, String)> {
         if let Some((load, _)) = closed_form_threshold(self.scene) {
             return Some((load, "the minimum of eq. (42)".into()));
         }
         let model = self.wavenumber_model?;
-        let carrier = model.threshold(self.quiet).ok()?;
-        let load = carrier.critical_load;
+        let load = model.critical_load_estimate(self.quiet).ok()?;
         (load.is_finite() && load > 0.0)
             .then(|| (load, format!("the threshold of `{}`", model.name())))
     }
