@@ -57,27 +57,25 @@ fn buckle_on_one_and_two_threads_gives_identical_json() {
     assert_eq!(outputs[0], outputs[1]);
 }
 
-#[test]
-fn run_on_one_and_two_threads_writes_identical_files() {
-    let root = tempfile_root("threads_identical");
-    let directories: Vec<_> = ["1", "2"]
+/// `wrinkle --threads T run --quiet --out DIR` with the scene `settings` for T = 1 and 2 in
+/// directories under `root`; each must exit 0.
+fn run_on_one_and_two_threads(root: &Path, settings: &[&str]) -> Vec<std::path::PathBuf> {
+    ["1", "2"]
         .iter()
         .map(|threads| {
             let directory = root.join(format!("threads_{threads}"));
-            let output = wrinkle(&[
+            let mut arguments = vec![
                 "--threads",
                 threads,
                 "run",
                 "--quiet",
                 "--out",
                 directory.to_str().unwrap(),
-                "--set",
-                "solver.max_amplitude_over_h=1",
-                "--set",
-                "output.plots=false",
-                "--set",
-                "output.surface=false",
-            ]);
+            ];
+            for setting in settings {
+                arguments.extend(["--set", setting]);
+            }
+            let output = wrinkle(&arguments);
             assert_eq!(
                 output.status.code(),
                 Some(0),
@@ -86,7 +84,20 @@ fn run_on_one_and_two_threads_writes_identical_files() {
             );
             directory
         })
-        .collect();
+        .collect()
+}
+
+#[test]
+fn run_on_one_and_two_threads_writes_identical_files() {
+    let root = tempfile_root("threads_identical");
+    let directories = run_on_one_and_two_threads(
+        &root,
+        &[
+            "solver.max_amplitude_over_h=1",
+            "output.plots=false",
+            "output.surface=false",
+        ],
+    );
     // (`scene.toml` differs by its output directory only.)
     for file in ["path.csv", "fields_final.vtu"] {
         let first = std::fs::read(directories[0].join(file)).unwrap();
@@ -120,39 +131,17 @@ fn run_on_one_and_two_threads_writes_identical_files() {
 #[test]
 fn run_losing_ellipticity_on_one_and_two_threads_records_it_identically() {
     let root = tempfile_root("threads_identical_ellipticity");
-    let directories: Vec<_> = ["1", "2"]
-        .iter()
-        .map(|threads| {
-            let directory = root.join(format!("threads_{threads}"));
-            let output = wrinkle(&[
-                "--threads",
-                threads,
-                "run",
-                "--quiet",
-                "--out",
-                directory.to_str().unwrap(),
-                "--set",
-                "model.wavenumber=0.05",
-                "--set",
-                r#"validity.accept=["scale_separation", "ellipticity"]"#,
-                "--set",
-                "solver.max_amplitude_over_h=1",
-                "--set",
-                "output.plots=false",
-                "--set",
-                "output.surface=false",
-                "--set",
-                "output.vtu=false",
-            ]);
-            assert_eq!(
-                output.status.code(),
-                Some(0),
-                "{}",
-                String::from_utf8_lossy(&output.stderr)
-            );
-            directory
-        })
-        .collect();
+    let directories = run_on_one_and_two_threads(
+        &root,
+        &[
+            "model.wavenumber=0.05",
+            r#"validity.accept=["scale_separation", "ellipticity"]"#,
+            "solver.max_amplitude_over_h=1",
+            "output.plots=false",
+            "output.surface=false",
+            "output.vtu=false",
+        ],
+    );
     let first = std::fs::read_to_string(directories[0].join("path.csv")).unwrap();
     assert_eq!(
         first,

@@ -91,19 +91,7 @@ pub(super) fn two_level_search<M: EnergyModel>(
         Some(coarse) => {
             // Global scan (or a local search from the closed form) on the coarse mesh, then a
             // local refinement on the real one.
-            let mut coarse_problem = build_problem(&coarse, problem.assembler.model().clone())?;
-            let mut coarse_factor = analyse(&coarse_problem)?;
-            let coarse_options = WavenumberSearchOptions {
-                relative_tolerance: COARSE_RELATIVE_TOLERANCE,
-                ..options.clone()
-            };
-            let first = minimise_critical_load(
-                &mut coarse_problem,
-                &mut coarse_factor,
-                &coarse_options,
-                observer,
-            )
-            .map_err(solve_error)?;
+            let first = coarse_level(&coarse, problem, options, observer)?;
             let local = fine_options(
                 options,
                 first.parameter,
@@ -146,20 +134,17 @@ pub(super) fn estimate_minimum<M: EnergyModel>(
     options: &WavenumberSearchOptions,
     observer: &mut dyn FnMut(&WavenumberEvaluation),
 ) -> Result<f64, Error> {
-    let solve_error = |e: wrinkle_runtime::solve::SolveError| Error::Solver(e.to_string());
-    let options = &WavenumberSearchOptions {
-        relative_tolerance: COARSE_RELATIVE_TOLERANCE,
-        ..closed_form_start(scene, options)
-    };
+    let options = &closed_form_start(scene, options);
     let Some(coarse) = coarse_scene(scene) else {
-        let found =
-            minimise_critical_load(problem, factor, options, observer).map_err(solve_error)?;
+        let coarse_options = WavenumberSearchOptions {
+            relative_tolerance: COARSE_RELATIVE_TOLERANCE,
+            ..options.clone()
+        };
+        let found = minimise_critical_load(problem, factor, &coarse_options, observer)
+            .map_err(|e| Error::Solver(e.to_string()))?;
         return lowest_load(&found);
     };
-    let mut coarse_problem = build_problem(&coarse, problem.assembler.model().clone())?;
-    let mut coarse_factor = analyse(&coarse_problem)?;
-    let first = minimise_critical_load(&mut coarse_problem, &mut coarse_factor, options, observer)
-        .map_err(solve_error)?;
+    let first = coarse_level(&coarse, problem, options, observer)?;
     let coarse_load = lowest_load(&first)?;
     set_model_parameter(problem, WAVENUMBER_PARAMETER, first.parameter)
         .map_err(|e| Error::Solver(e.to_string()))?;
@@ -173,6 +158,29 @@ pub(super) fn estimate_minimum<M: EnergyModel>(
             .unwrap_or(coarse_load),
         _ => coarse_load,
     })
+}
+
+/// The global level of [`two_level_search`]: the search to [`COARSE_RELATIVE_TOLERANCE`] in
+/// $`Q`$ on the half mesh `coarse`, with `problem`'s model.
+fn coarse_level<M: EnergyModel>(
+    coarse: &Scene,
+    problem: &Problem<M>,
+    options: &WavenumberSearchOptions,
+    observer: &mut dyn FnMut(&WavenumberEvaluation),
+) -> Result<WavenumberSearch, Error> {
+    let mut coarse_problem = build_problem(coarse, problem.assembler.model().clone())?;
+    let mut coarse_factor = analyse(&coarse_problem)?;
+    let coarse_options = WavenumberSearchOptions {
+        relative_tolerance: COARSE_RELATIVE_TOLERANCE,
+        ..options.clone()
+    };
+    minimise_critical_load(
+        &mut coarse_problem,
+        &mut coarse_factor,
+        &coarse_options,
+        observer,
+    )
+    .map_err(|e| Error::Solver(e.to_string()))
 }
 
 /// The lowest critical load of a search's analysis at its minimiser.
