@@ -398,3 +398,120 @@ fn large_grid_laplacian_factorises_and_solves_quickly() {
     assert!(residual < 1e-12 * rhs_norm, "residual {residual:e}");
     assert!(elapsed.as_secs_f64() < 1.0, "took {elapsed:?}");
 }
+
+/// The pattern of a `ex × ey` grid of 8-node quadrilaterals with `dofs` unknowns per node (the
+/// plate's element).
+fn serendipity_grid(ex: usize, ey: usize, dofs: usize) -> Arc<SparsityPattern> {
+    let columns = 2 * ex + 1;
+    let mut number = vec![usize::MAX; columns * (2 * ey + 1)];
+    let mut nodes = 0;
+    for i in 0..=2 * ey {
+        for j in 0..columns {
+            if i % 2 == 0 || j % 2 == 0 {
+                number[i * columns + j] = nodes;
+                nodes += 1;
+            }
+        }
+    }
+    let node = |i: usize, j: usize| number[i * columns + j];
+    let mut elements = Vec::new();
+    for a in 0..ey {
+        for b in 0..ex {
+            let (i, j) = (2 * a, 2 * b);
+            let corners = [
+                node(i, j),
+                node(i, j + 1),
+                node(i, j + 2),
+                node(i + 1, j),
+                node(i + 1, j + 2),
+                node(i + 2, j),
+                node(i + 2, j + 1),
+                node(i + 2, j + 2),
+            ];
+            let list: Vec<Option<usize>> = corners
+                .iter()
+                .flat_map(|&n| (0..dofs).map(move |d| Some(n * dofs + d)))
+                .collect();
+            elements.push(list);
+        }
+    }
+    Arc::new(SparsityPattern::from_element_dofs(
+        nodes * dofs,
+        elements.iter().map(Vec::as_slice),
+    ))
+}
+
+/// The two-core substitution (`set_split_solve`, on by default from 20 000 unknowns) on a plate
+/// pattern, forced on a small one: it solves positive definite ($`LL^\top`$) and indefinite
+/// ($`LDL^\top`$) systems as faer's sequential solve does, to rounding, and gives the same bits
+/// on one thread and on two.
+#[test]
+fn split_solve_matches_the_sequential_solve_and_is_the_same_on_one_and_two_threads() {
+    use wrinkle_runtime::linear::factor::SupernodalThreshold;
+    let pattern = serendipity_grid(48, 12, 3);
+    let n = pattern.dimension();
+    let mut rng = StdRng::seed_from_u64(30);
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let two = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
+    for (negative_every, kind) in [
+        (0, FactorizationKind::Cholesky),
+        (7, FactorizationKind::SymmetricIndefinite),
+    ] {
+        let matrix = dominant_matrix(&pattern, &mut rng, 0.5, |i| {
+            negative_every > 0 && i % negative_every == 0
+        });
+        let mut split = SparseFactorization::analyze_with_threshold(
+            &pattern,
+            SupernodalThreshold::FORCE_SUPERNODAL,
+        )
+        .unwrap();
+        let mut sequential = split.same_analysis().unwrap();
+        assert!(
+            split.set_split_solve(true),
+            "a split exists on a 48 × 12 grid"
+        );
+        assert!(!sequential.set_split_solve(false));
+        let [top, first, second] = split.split_entries().unwrap();
+        assert!(
+            top < first.min(second),
+            "top {top}, groups {first}, {second}"
+        );
+        assert!(
+            first.abs_diff(second) * 5 < first.max(second),
+            "{first} vs {second}"
+        );
+        assert_eq!(split.factorize(&matrix).unwrap(), kind);
+        assert_eq!(sequential.factorize(&matrix).unwrap(), kind);
+
+        let rhs = random_vector(n, &mut rng);
+        let mut reference = rhs.clone();
+        sequential.solve_in_place(&mut reference).unwrap();
+        let mut on_one = rhs.clone();
+        one.install(|| split.solve_in_place(&mut on_one)).unwrap();
+        let mut on_two = rhs.clone();
+        two.install(|| split.solve_in_place(&mut on_two)).unwrap();
+        assert_eq!(on_one, on_two, "{kind:?}: bits depend on the thread count");
+        let scale = reference.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let difference = reference
+            .iter()
+            .zip(&on_two)
+            .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+        assert!(
+            difference < 1e-12 * scale,
+            "{kind:?}: {difference:e} of {scale:e}"
+        );
+        let mut product = vec![0.0; n];
+        matrix.multiply_into(&on_two, &mut product);
+        let residual = product
+            .iter()
+            .zip(&rhs)
+            .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+        assert!(residual < 1e-12, "{kind:?}: residual {residual:e}");
+    }
+}

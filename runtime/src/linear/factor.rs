@@ -14,6 +14,11 @@
 //!    of $`d_k`$ give the inertia of $`A`$ (Sylvester's law);
 //! 3. $`P A Q = L U`$ with partial pivoting (simplicial, COLAMD column ordering computed on first
 //!    use and then reused), which also detects numerical singularity through its pivots.
+//!
+//! Solves with a supernodal $`LL^\top`$ or $`LDL^\top`$ factor of
+//! [`super::split_solve::SPLIT_SOLVE_FROM`] unknowns or more substitute two halves of its
+//! elimination tree on two cores ([`super::split_solve`]; the same bits on any number of
+//! threads); smaller ones, and LU, use faer's sequential solve.
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
@@ -31,6 +36,7 @@ use faer::{Conj, MatMut, Par, Side};
 
 pub use super::error::LinearError;
 use super::pattern::{SparseMatrix, SparsityPattern};
+use super::split_solve::{Diagonal, SPLIT_SOLVE_FROM, SolveSplit};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
 
@@ -85,6 +91,9 @@ pub struct SparseFactorization {
     /// Wall time spent in [`SparseFactorization::solve_in_place`] since the analysis, in
     /// nanoseconds (atomic: solves take `&self`).
     solve_nanos: AtomicU64,
+    /// The two-core substitution of a supernodal factor ([`super::split_solve`]), from
+    /// [`super::split_solve::SPLIT_SOLVE_FROM`] unknowns; shared like the analysis.
+    split: Option<std::sync::Arc<SolveSplit>>,
 }
 
 impl std::fmt::Debug for SparseFactorization {
@@ -258,6 +267,7 @@ impl SparseFactorization {
             negative_pivots: None,
             refinement_values: Vec::new(),
             solve_nanos: AtomicU64::new(0),
+            split: None,
         };
         if dimension == 0 {
             return Ok(factorization);
@@ -278,7 +288,29 @@ impl SparseFactorization {
             MemBuffer::try_new(numeric_scratch(&symbolic)).map_err(backend)?;
         factorization.factor_values = vec![0.0; symbolic.len_val()];
         factorization.symbolic = Some(std::sync::Arc::new(symbolic));
+        if dimension >= SPLIT_SOLVE_FROM {
+            factorization.set_split_solve(true);
+        }
         Ok(factorization)
+    }
+
+    /// Factor entries of the split solve's top and two groups, when it is on.
+    pub fn split_entries(&self) -> Option<[usize; 3]> {
+        self.split.as_deref().map(SolveSplit::entries)
+    }
+
+    /// Whether solves with a supernodal factor substitute two halves of its elimination tree
+    /// side by side ([`super::split_solve`]; the default from
+    /// [`super::split_solve::SPLIT_SOLVE_FROM`] unknowns) or use faer's sequential solve. The
+    /// split is kept only where it pays (a balanced one exists); returns whether it is on.
+    pub fn set_split_solve(&mut self, enabled: bool) -> bool {
+        self.split = match (enabled, self.symbolic.as_deref().map(SymbolicCholesky::raw)) {
+            (true, Some(SymbolicCholeskyRaw::Supernodal(supernodal))) => {
+                SolveSplit::new(supernodal).map(std::sync::Arc::new)
+            }
+            _ => None,
+        };
+        self.split.is_some()
     }
 
     /// A new, unfactorised factorisation of the same pattern sharing this one's symbolic
@@ -302,6 +334,7 @@ impl SparseFactorization {
             negative_pivots: None,
             refinement_values: Vec::new(),
             solve_nanos: AtomicU64::new(0),
+            split: self.split.clone(),
         })
     }
 
@@ -593,12 +626,37 @@ impl SparseFactorization {
 
     fn raw_solve(&self, kind: FactorizationKind, rhs: &mut [f64]) -> Result<(), LinearError> {
         let n = self.dimension;
-        let rhs_matrix = MatMut::from_column_major_slice_mut(rhs, n, 1);
         match kind {
             FactorizationKind::Cholesky | FactorizationKind::SymmetricIndefinite => {
                 let Some(symbolic) = self.symbolic.as_ref() else {
                     return Err(LinearError::NotFactorized);
                 };
+                if let (Some(split), SymbolicCholeskyRaw::Supernodal(supernodal)) =
+                    (self.split.as_deref(), symbolic.raw())
+                {
+                    let diagonal = if kind == FactorizationKind::Cholesky {
+                        Diagonal::Cholesky
+                    } else {
+                        Diagonal::Pivots
+                    };
+                    let mut permuted = match symbolic.perm() {
+                        Some(permutation) => {
+                            permutation.arrays().0.iter().map(|&old| rhs[old]).collect()
+                        }
+                        None => rhs.to_vec(),
+                    };
+                    split.solve_in_place(supernodal, &self.factor_values, diagonal, &mut permuted);
+                    match symbolic.perm() {
+                        Some(permutation) => {
+                            for (value, &new) in rhs.iter_mut().zip(permutation.arrays().1) {
+                                *value = permuted[new];
+                            }
+                        }
+                        None => rhs.copy_from_slice(&permuted),
+                    }
+                    return Ok(());
+                }
+                let rhs_matrix = MatMut::from_column_major_slice_mut(rhs, n, 1);
                 let mut buffer =
                     MemBuffer::try_new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq))
                         .map_err(backend)?;
@@ -623,6 +681,7 @@ impl SparseFactorization {
                 let Some(lu) = self.lu.as_ref() else {
                     return Err(LinearError::NotFactorized);
                 };
+                let rhs_matrix = MatMut::from_column_major_slice_mut(rhs, n, 1);
                 let mut buffer = MemBuffer::try_new(
                     simplicial::solve_in_place_scratch::<usize, f64>(n, 1, Par::Seq),
                 )

@@ -8,6 +8,7 @@ pub mod error;
 pub mod factor;
 pub mod ordering;
 pub mod pattern;
+pub mod split_solve;
 pub mod vector;
 
 pub use eigen::{BucklingMode, BucklingOptions, BucklingSolution, smallest_positive_buckling};
