@@ -97,9 +97,17 @@ impl ModelVisitor for RunVisitor<'_> {
         let mut problem = build_problem(scene, model)?;
         let mut factor = analyse(&problem)?;
         let threshold = find_threshold_with(scene, &mut problem, &mut factor, self.options)?;
-        let imperfection = add_imperfection(scene, &mut problem, &layout, &threshold)?;
+        let (imperfection, response) = add_imperfection(scene, &mut problem, &layout, &threshold)?;
         let _phase = crate::interrupt::PathPhase::enter();
-        let trace = trace_path(scene, &problem, &mut factor, &layout, &threshold, quiet)?;
+        let trace = trace_path(
+            scene,
+            &problem,
+            &mut factor,
+            &layout,
+            &threshold,
+            response.as_deref(),
+            quiet,
+        )?;
         let context = RunContext {
             scene,
             spec: M::SPEC,
@@ -127,13 +135,15 @@ impl ModelVisitor for RunVisitor<'_> {
 /// Adds the imperfection of `solver.imperfection` to the fixed loads: uniform (it needs the
 /// wavenumber of an envelope model) or mode-shaped — for `"auto"` uniform for envelope models,
 /// the mode for the others; a `"uniform"` asked of a model without a wavenumber (the plate)
-/// is the mode, and [`AppliedImperfection::shape`] says so.
+/// is the mode, and [`AppliedImperfection::shape`] says so. Returns with it the linear response
+/// of the unloaded sheet to the imperfection when it is known without a solve (the mode's:
+/// $`\varepsilon\varphi`$), where the path's start is sought from.
 fn add_imperfection<M: EnergyModel>(
     scene: &Scene,
     problem: &mut Problem<M>,
     layout: &Layout,
     threshold: &Threshold,
-) -> Result<AppliedImperfection, Error> {
+) -> Result<(AppliedImperfection, Option<Vec<f64>>), Error> {
     let uniform = match scene.solver.imperfection {
         Imperfection::Uniform => true,
         Imperfection::Mode => false,
@@ -141,26 +151,29 @@ fn add_imperfection<M: EnergyModel>(
     };
     if let (true, Some(q)) = (uniform, threshold.wavenumber) {
         let amplitude = add_uniform_imperfection(scene, problem, layout, q)?;
-        return Ok(AppliedImperfection {
+        let applied = AppliedImperfection {
             amplitude,
             shape: Imperfection::Uniform,
-        });
+        };
+        return Ok((applied, None));
     }
-    let amplitude = add_mode_imperfection(scene, problem, layout, threshold)?;
-    Ok(AppliedImperfection {
+    let (amplitude, response) = add_mode_imperfection(scene, problem, layout, threshold)?;
+    let applied = AppliedImperfection {
         amplitude,
         shape: Imperfection::Mode,
-    })
+    };
+    Ok((applied, Some(response)))
 }
 
 /// Adds the mode-shaped imperfection $`F = \varepsilon K_0\varphi`$ to the fixed loads;
-/// returns its physical amplitude on the unloaded sheet (mm).
+/// returns its physical amplitude on the unloaded sheet (mm) and its linear response
+/// $`\varepsilon\varphi`$ (free unknowns).
 fn add_mode_imperfection<M: EnergyModel>(
     scene: &Scene,
     problem: &mut Problem<M>,
     layout: &Layout,
     threshold: &Threshold,
-) -> Result<f64, Error> {
+) -> Result<(f64, Vec<f64>), Error> {
     let mode = threshold.buckling.modes.first().ok_or_else(|| {
         Error::Solver("linear buckling returned no mode to shape the imperfection".into())
     })?;
@@ -188,7 +201,8 @@ fn add_mode_imperfection<M: EnergyModel>(
     for (f, k) in problem.loads.fixed.iter_mut().zip(&force) {
         *f += epsilon * k;
     }
-    Ok(epsilon * amplitude)
+    let response = mode.iter().map(|m| epsilon * m).collect();
+    Ok((epsilon * amplitude, response))
 }
 
 /// The uniform imperfection of the paper's envelope runs: a fixed transverse load
@@ -466,17 +480,25 @@ impl<M: EnergyModel> PathRecorder<'_, '_, M> {
     }
 }
 
-/// Equilibrium at $`\lambda = 0`$ under the fixed loads (tension, imperfection), from the
-/// pre-buckling state.
+/// Equilibrium at $`\lambda = 0`$ under the fixed loads (tension, imperfection), by Newton from
+/// the pre-buckling state plus the imperfection's linear `response` when known (then the
+/// residual left to correct is the imperfection's quadratic part: one iteration fewer).
 fn start_point<M: EnergyModel>(
     problem: &Problem<M>,
     factor: &mut SparseFactorization,
     threshold: &Threshold,
+    response: Option<&[f64]>,
 ) -> Result<PathState, Error> {
     let mut matrix = problem.new_matrix();
+    let mut initial = threshold.buckling.state_at(threshold.reference_load, 0.0);
+    if let Some(response) = response {
+        for (u, r) in initial.iter_mut().zip(response) {
+            *u += r;
+        }
+    }
     let solution = newton(
         problem,
-        threshold.buckling.state_at(threshold.reference_load, 0.0),
+        initial,
         0.0,
         factor,
         &mut matrix,
@@ -572,9 +594,10 @@ fn trace_path<M: EnergyModel>(
     factor: &mut SparseFactorization,
     layout: &Layout,
     threshold: &Threshold,
+    response: Option<&[f64]>,
     quiet: bool,
 ) -> Result<Trace, Error> {
-    let start = start_point(problem, factor, threshold)?;
+    let start = start_point(problem, factor, threshold, response)?;
     // The ellipticity checks' own worker, when the path has two or more.
     let pool = (rayon::current_num_threads() >= 2)
         .then(|| {
@@ -829,13 +852,14 @@ mod tests {
             let mut factor = analyse(&problem).unwrap();
             let threshold =
                 crate::threshold::find_threshold(scene, &mut problem, &mut factor, true).unwrap();
-            add_imperfection(scene, &mut problem, &layout, &threshold).unwrap();
+            let (_, response) = add_imperfection(scene, &mut problem, &layout, &threshold).unwrap();
             let critical = threshold.critical_load();
             let outcomes = self
                 .guesses
                 .iter()
                 .map(|factor_of_critical| {
-                    let start = start_point(&problem, &mut factor, &threshold).unwrap();
+                    let start = start_point(&problem, &mut factor, &threshold, response.as_deref())
+                        .unwrap();
                     let options = AnmOptions {
                         max_steps: 6,
                         bifurcation_mode_guess: threshold.buckling.modes.first().cloned(),
