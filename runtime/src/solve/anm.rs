@@ -735,6 +735,7 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
         let mut end = self.accept_end(step, approximant)?;
         let mut halvings = 0;
         let mut crossings_redone = 0;
+        let mut shortened_pade = false;
         loop {
             let (jumped, interior) = self.jumped_over_critical_point(step, &end, approximant)?;
             if !jumped {
@@ -745,9 +746,23 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
             // small for the step-length criteria, and a step can run along the fundamental
             // branch past λ_c onto the unstable branch of the imperfect problem (the strip of
             // example 2 with a 1e-5 imperfection ended at λ = 36 instead of 24.6 mm). A Padé
-            // step is redone with the series' own range, a series step with half its length.
+            // step is redone once with a shorter Padé range, then with the series' own range; a
+            // series step with half its length.
             if approximant.pade_at(end.step_length).is_some() {
-                approximant.pade = None;
+                // A Padé end far along a nearly linear pre-buckling path passes the residual
+                // check past λ_c (the strip's plate: from λ = 0.03 mm to beyond 13.8 mm); the
+                // series' range would restart it from a fraction of a millimetre. Once, the
+                // Padé range is shortened until the approximant's load is 90 % of the way to
+                // the expected critical load; then the series' range.
+                match self.pade_range_below_guess(approximant, end.step_length) {
+                    Some(range) if !shortened_pade => {
+                        shortened_pade = true;
+                        if let Some((_, pade_range)) = approximant.pade.as_mut() {
+                            *pade_range = range;
+                        }
+                    }
+                    _ => approximant.pade = None,
+                }
             } else if halvings < MAX_CROSSING_HALVINGS && self.negative_pivots == Some(0) {
                 // Only a stable start is kept stable: once the path is on an unstable branch
                 // (a crossing taken as its own), further crossings are the branch's.
@@ -763,6 +778,28 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
             crossings_redone += 1;
             end = self.accept_end(step, approximant)?;
         }
+    }
+
+    /// The Padé range, halved from `crossed` (a Padé end that crossed a critical point), at
+    /// which the approximant's load is at most 90 % of the way from the step's start to the
+    /// expected critical load ([`AnmOptions::bifurcation_load_guess`], known before the path:
+    /// the same on any number of threads); `None` without a guess above the start, or when no
+    /// such range is longer than the series' own.
+    fn pade_range_below_guess(&self, approximant: &StepApproximant, crossed: f64) -> Option<f64> {
+        let start = self.state.load;
+        let guess = self
+            .options
+            .bifurcation_load_guess
+            .filter(|guess| guess.is_finite() && *guess > start)?;
+        let limit = start + 0.9 * (guess - start);
+        let mut range = 0.5 * crossed;
+        while range > approximant.plain {
+            if approximant.evaluate(range).load <= limit {
+                return Some(range);
+            }
+            range *= 0.5;
+        }
+        None
     }
 
     /// Assembles and factorises the tangent at the step's start; a change of its inertia
