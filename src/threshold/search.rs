@@ -56,7 +56,6 @@ pub(super) fn two_level_search<M: EnergyModel>(
     options: &WavenumberSearchOptions,
     observer: &mut dyn FnMut(&WavenumberEvaluation),
 ) -> Result<WavenumberSearch, Error> {
-    let solve_error = |e: wrinkle_runtime::solve::SolveError| Error::Solver(e.to_string());
     let options = &closed_form_start(scene, options);
     let coarse = coarse_scene(scene);
     let mut direct_evaluations = Vec::new();
@@ -136,18 +135,13 @@ pub(super) fn estimate_minimum<M: EnergyModel>(
 ) -> Result<f64, Error> {
     let options = &closed_form_start(scene, options);
     let Some(coarse) = coarse_scene(scene) else {
-        let coarse_options = WavenumberSearchOptions {
-            relative_tolerance: COARSE_RELATIVE_TOLERANCE,
-            ..options.clone()
-        };
-        let found = minimise_critical_load(problem, factor, &coarse_options, observer)
-            .map_err(|e| Error::Solver(e.to_string()))?;
+        let found = minimise_critical_load(problem, factor, &coarse_options(options), observer)
+            .map_err(solve_error)?;
         return lowest_load(&found);
     };
     let first = coarse_level(&coarse, problem, options, observer)?;
     let coarse_load = lowest_load(&first)?;
-    set_model_parameter(problem, WAVENUMBER_PARAMETER, first.parameter)
-        .map_err(|e| Error::Solver(e.to_string()))?;
+    set_model_parameter(problem, WAVENUMBER_PARAMETER, first.parameter).map_err(solve_error)?;
     let shifted = super::steps::threshold_buckling(LOCAL_SHIFT * coarse_load);
     Ok(match linear_buckling(problem, factor, &shifted) {
         Ok(buckling) if factor.negative_pivots() == Some(0) => buckling
@@ -170,17 +164,26 @@ fn coarse_level<M: EnergyModel>(
 ) -> Result<WavenumberSearch, Error> {
     let mut coarse_problem = build_problem(coarse, problem.assembler.model().clone())?;
     let mut coarse_factor = analyse(&coarse_problem)?;
-    let coarse_options = WavenumberSearchOptions {
-        relative_tolerance: COARSE_RELATIVE_TOLERANCE,
-        ..options.clone()
-    };
     minimise_critical_load(
         &mut coarse_problem,
         &mut coarse_factor,
-        &coarse_options,
+        &coarse_options(options),
         observer,
     )
-    .map_err(|e| Error::Solver(e.to_string()))
+    .map_err(solve_error)
+}
+
+/// `options` with the global level's tolerance, [`COARSE_RELATIVE_TOLERANCE`] in $`Q`$.
+fn coarse_options(options: &WavenumberSearchOptions) -> WavenumberSearchOptions {
+    WavenumberSearchOptions {
+        relative_tolerance: COARSE_RELATIVE_TOLERANCE,
+        ..options.clone()
+    }
+}
+
+/// A solver's error as the threshold's.
+fn solve_error(error: impl std::fmt::Display) -> Error {
+    Error::Solver(error.to_string())
 }
 
 /// The lowest critical load of a search's analysis at its minimiser.

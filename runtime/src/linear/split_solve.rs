@@ -28,7 +28,7 @@
 use faer::linalg::matmul::matmul_with_conj;
 use faer::linalg::triangular_solve as triangular;
 use faer::sparse::linalg::cholesky::supernodal::{SupernodalLltRef, SymbolicSupernodalCholesky};
-use faer::{Accum, Conj, MatMut, Par};
+use faer::{Accum, Conj, MatMut, MatRef, Par};
 use std::ops::Range;
 
 /// Below this many unknowns the solve stays faer's sequential one (a split saves well under a
@@ -242,25 +242,17 @@ impl SolveSplit {
         let mut scratch = vec![0.0; self.longest_pattern];
 
         // Forward: the groups in copies of their own, the top's entries collecting updates.
-        let forward_group = |group: usize| {
-            let mut y = x.to_vec();
+        let [first, second] = self.groups_side_by_side(x, |group, y| {
             for &column in &self.top_columns {
                 y[column] = 0.0;
             }
             let mut scratch = vec![0.0; self.longest_pattern];
             for range in &self.groups[group] {
                 for s in range.clone() {
-                    forward(factor, s, diagonal, &mut y, &mut scratch);
+                    forward(factor, s, diagonal, y, &mut scratch);
                 }
             }
-            y
-        };
-        let (first, second) = rayon::join(|| forward_group(0), || forward_group(1));
-        for (group, y) in [&first, &second].into_iter().enumerate() {
-            for columns in &self.group_columns[group] {
-                x[columns.clone()].copy_from_slice(&y[columns.clone()]);
-            }
-        }
+        });
         for &column in &self.top_columns {
             x[column] = (x[column] + first[column]) + second[column];
         }
@@ -271,11 +263,9 @@ impl SolveSplit {
 
         if diagonal == Diagonal::Pivots {
             for s in 0..symbolic.n_supernodes() {
-                let supernode = factor.supernode(s);
-                let block = supernode.val();
-                for index in 0..block.ncols() {
-                    let inverse = block[(index, index)].recip();
-                    x[supernode.start() + index] *= inverse;
+                let (start, _, diagonal_block, _) = supernode_parts(factor, s);
+                for index in 0..diagonal_block.ncols() {
+                    x[start + index] *= diagonal_block[(index, index)].recip();
                 }
             }
         }
@@ -284,23 +274,53 @@ impl SolveSplit {
         for &s in self.top.iter().rev() {
             backward(factor, s, diagonal, x, &mut scratch);
         }
-        let backward_group = |group: usize| {
-            let mut y = x.to_vec();
+        self.groups_side_by_side(x, |group, y| {
             let mut scratch = vec![0.0; self.longest_pattern];
             for range in self.groups[group].iter().rev() {
                 for s in range.clone().rev() {
-                    backward(factor, s, diagonal, &mut y, &mut scratch);
+                    backward(factor, s, diagonal, y, &mut scratch);
                 }
             }
+        });
+    }
+
+    /// Runs `work` on each group's own copy of `x`, the two side by side, and copies each
+    /// group's columns back into `x`; returns the copies.
+    fn groups_side_by_side(
+        &self,
+        x: &mut [f64],
+        work: impl Fn(usize, &mut [f64]) + Sync,
+    ) -> [Vec<f64>; 2] {
+        let run = |group: usize| {
+            let mut y = x.to_vec();
+            work(group, &mut y);
             y
         };
-        let (first, second) = rayon::join(|| backward_group(0), || backward_group(1));
+        let (first, second) = rayon::join(|| run(0), || run(1));
         for (group, y) in [&first, &second].into_iter().enumerate() {
             for columns in &self.group_columns[group] {
                 x[columns.clone()].copy_from_slice(&y[columns.clone()]);
             }
         }
+        [first, second]
     }
+}
+
+/// Supernode `s` of `factor`: its first column, its pattern below the diagonal block, the
+/// diagonal block and the block below it.
+fn supernode_parts<'f>(
+    factor: SupernodalLltRef<'f, usize, f64>,
+    s: usize,
+) -> (usize, &'f [usize], MatRef<'f, f64>, MatRef<'f, f64>) {
+    let supernode = factor.supernode(s);
+    let block = supernode.val();
+    let (diagonal_block, below) = block.split_at_row(block.ncols());
+    (
+        supernode.start(),
+        supernode.pattern(),
+        diagonal_block,
+        below,
+    )
 }
 
 /// Forward substitution of supernode `s`: its diagonal block, then the updates
@@ -312,12 +332,8 @@ fn forward(
     x: &mut [f64],
     scratch: &mut [f64],
 ) {
-    let supernode = factor.supernode(s);
-    let block = supernode.val();
-    let size = block.ncols();
-    let (diagonal_block, below) = block.split_at_row(size);
-    let pattern = supernode.pattern();
-    let start = supernode.start();
+    let (start, pattern, diagonal_block, below) = supernode_parts(factor, s);
+    let size = diagonal_block.ncols();
     let mut own = MatMut::from_column_major_slice_mut(&mut x[start..start + size], size, 1);
     match diagonal {
         Diagonal::Cholesky => triangular::solve_lower_triangular_in_place_with_conj(
@@ -359,16 +375,12 @@ fn backward(
     x: &mut [f64],
     scratch: &mut [f64],
 ) {
-    let supernode = factor.supernode(s);
-    let block = supernode.val();
-    let size = block.ncols();
-    let (diagonal_block, below) = block.split_at_row(size);
-    let pattern = supernode.pattern();
-    let start = supernode.start();
+    let (start, pattern, diagonal_block, below) = supernode_parts(factor, s);
+    let size = diagonal_block.ncols();
     for (value, &row) in scratch.iter_mut().zip(pattern) {
         *value = x[row];
     }
-    let known = faer::MatRef::from_column_major_slice(&scratch[..pattern.len()], pattern.len(), 1);
+    let known = MatRef::from_column_major_slice(&scratch[..pattern.len()], pattern.len(), 1);
     let mut own = MatMut::from_column_major_slice_mut(&mut x[start..start + size], size, 1);
     matmul_with_conj(
         own.as_mut(),

@@ -373,6 +373,12 @@ impl StepApproximant<'_> {
         evaluate_approximant(self.series, self.plain, self.pade.as_ref(), a)
     }
 
+    /// The series' range and the Padé approximant with its range, without the series
+    /// borrowed.
+    fn into_parts(self) -> (f64, Option<(PadeApproximant, f64)>) {
+        (self.plain, self.pade)
+    }
+
     /// The path tangent at `a`, from the approximant evaluated there: beyond the series' range
     /// its own derivative is meaningless and can point backwards.
     fn derivative(&self, a: f64) -> (Vec<f64>, f64) {
@@ -411,6 +417,21 @@ pub struct StepTail {
 }
 
 impl StepTail {
+    /// The tail of the step with `series` and its approximant's
+    /// [`parts`](StepApproximant::into_parts), stopped between the parameters `bracket`.
+    fn new(
+        series: PathSeries,
+        (plain, pade): (f64, Option<(PadeApproximant, f64)>),
+        bracket: (f64, f64),
+    ) -> Self {
+        Self {
+            series,
+            plain,
+            pade,
+            bracket,
+        }
+    }
+
     /// The step's point at parameter `a` (as the step evaluated its own points).
     pub fn evaluate(&self, a: f64) -> PathState {
         evaluate_approximant(&self.series, self.plain, self.pade.as_ref(), a)
@@ -647,13 +668,8 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
                     record.load_range.1 = self.state.load;
                     record.completed = false;
                     steps_log.push(record);
-                    let StepApproximant { plain, pade, .. } = approximant;
-                    self.tail = Some(StepTail {
-                        series,
-                        plain,
-                        pade,
-                        bracket,
-                    });
+                    let parts = approximant.into_parts();
+                    self.tail = Some(StepTail::new(series, parts, bracket));
                     return Ok(Some(stop));
                 }
             };
@@ -678,13 +694,8 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
             predicted_bifurcation: predicted,
         };
         if observer(&event) == PathControl::Stop {
-            let StepApproximant { plain, pade, .. } = approximant;
-            self.tail = Some(StepTail {
-                series,
-                plain,
-                pade,
-                bracket: (last_reported, end.step_length),
-            });
+            let (parts, bracket) = (approximant.into_parts(), (last_reported, end.step_length));
+            self.tail = Some(StepTail::new(series, parts, bracket));
             return Ok(Some(PathStop::Observer));
         }
         Ok(end.hit_max_load.then_some(PathStop::MaxLoad))

@@ -124,15 +124,17 @@ pub fn land_on_step<M: EnergyModel>(
     };
     let window = target.tolerance() * value.abs();
     let aim = value + 0.5 * window;
-    let (mut low, mut high) = tail.bracket;
-    let mut low_miss = measure(&tail.evaluate(low)) - aim;
-    let mut high_miss = measure(&tail.evaluate(high)) - aim;
-    if !(low_miss < 0.0 && high_miss > 0.0) {
+    let (low, high) = tail.bracket;
+    let mut bracket = Bracket {
+        low: (measure(&tail.evaluate(low)) - aim, low),
+        high: (measure(&tail.evaluate(high)) - aim, high),
+        side: 0,
+    };
+    if !(bracket.low.0 < 0.0 && bracket.high.0 > 0.0) {
         return None;
     }
-    let mut side = 0;
     for _ in 0..MAX_STEP_LANDING_ITERATIONS {
-        let a = low + low_miss / (low_miss - high_miss) * (high - low);
+        let a = bracket.chord_parameter();
         let state = tail.evaluate(a);
         let miss = measure(&state) - aim;
         if !miss.is_finite() {
@@ -146,65 +148,68 @@ pub fn land_on_step<M: EnergyModel>(
                 relative_residual: relative,
             });
         }
-        if miss > 0.0 {
-            (high, high_miss) = (a, miss);
-            if side == 1 {
-                low_miss *= 0.5;
-            }
-            side = 1;
-        } else {
-            (low, low_miss) = (a, miss);
-            if side == -1 {
-                high_miss *= 0.5;
-            }
-            side = -1;
-        }
+        bracket.narrow(miss, a);
     }
     None
 }
 
 /// Two points about the aim, each with its measure minus the aim (negative below, positive
-/// above).
-struct Bracket {
-    low: (f64, PathState),
-    high: (f64, PathState),
+/// above): path states ([`land`]) or path parameters ([`land_on_step`]).
+struct Bracket<T> {
+    low: (f64, T),
+    high: (f64, T),
     /// The side replaced last: -1 low, +1 high, 0 none yet.
     side: i8,
 }
 
-impl Bracket {
-    /// The point of the chord where the linear interpolation of the measure meets the aim.
-    fn chord_point(&self) -> PathState {
-        let (low, high) = (&self.low, &self.high);
-        let fraction = low.0 / (low.0 - high.0);
-        PathState {
-            displacement: low
-                .1
-                .displacement
-                .iter()
-                .zip(&high.1.displacement)
-                .map(|(a, b)| a + fraction * (b - a))
-                .collect(),
-            load: low.1.load + fraction * (high.1.load - low.1.load),
-        }
+impl<T> Bracket<T> {
+    /// The fraction of the way from the low end to the high one where the linear
+    /// interpolation of the measure meets the aim.
+    fn fraction(&self) -> f64 {
+        self.low.0 / (self.low.0 - self.high.0)
     }
 
-    /// Replaces the end on the side of `miss` by `state`; halves the other end's value when
+    /// Replaces the end on the side of `miss` by `point`; halves the other end's value when
     /// the same side is replaced twice in a row (Illinois).
-    fn narrow(&mut self, miss: f64, state: PathState) {
+    fn narrow(&mut self, miss: f64, point: T) {
         if miss > 0.0 {
-            self.high = (miss, state);
+            self.high = (miss, point);
             if self.side == 1 {
                 self.low.0 *= 0.5;
             }
             self.side = 1;
         } else {
-            self.low = (miss, state);
+            self.low = (miss, point);
             if self.side == -1 {
                 self.high.0 *= 0.5;
             }
             self.side = -1;
         }
+    }
+}
+
+impl Bracket<PathState> {
+    /// The point of the chord where the linear interpolation of the measure meets the aim.
+    fn chord_point(&self) -> PathState {
+        let (low, high) = (&self.low.1, &self.high.1);
+        let fraction = self.fraction();
+        PathState {
+            displacement: low
+                .displacement
+                .iter()
+                .zip(&high.displacement)
+                .map(|(a, b)| a + fraction * (b - a))
+                .collect(),
+            load: low.load + fraction * (high.load - low.load),
+        }
+    }
+}
+
+impl Bracket<f64> {
+    /// The path parameter where the linear interpolation of the measure meets the aim.
+    fn chord_parameter(&self) -> f64 {
+        let (low, high) = (self.low.1, self.high.1);
+        low + self.fraction() * (high - low)
     }
 }
 
