@@ -243,14 +243,12 @@ fn two_dimensional_grid_of_ten_thousand_dofs() {
     let a = grid_laplacian(nx, ny);
     assert_eq!(a.dimension(), 10_000);
     let b = negative_diagonal(&a, |_| 1.0);
-    let start = std::time::Instant::now();
     let factor = factorize(&a);
     let options = BucklingOptions {
         modes: 3,
         ..Default::default()
     };
     let solution = smallest_positive_buckling(&a, &factor, &b, &options).unwrap();
-    let elapsed = start.elapsed();
     let eigenvalue = |j: usize, k: usize| {
         second_difference_eigenvalue(j, nx) + second_difference_eigenvalue(k, ny)
     };
@@ -263,7 +261,10 @@ fn two_dimensional_grid_of_ten_thousand_dofs() {
     let computed: Vec<f64> = solution.modes.iter().map(|mode| mode.load_factor).collect();
     assert_load_factors(&computed, &expected, 1e-11);
     assert_modes_satisfy_equation(&a, &b, &solution.modes);
-    assert!(elapsed.as_secs_f64() < 2.0, "took {elapsed:?}");
+    // Its cost as work, not wall time: with the thick restarts, the three wanted load factors
+    // (the fourth only 7 % above the third: 2.13e-3, 3.99e-3, 6.64e-3, 7.10e-3) take a few
+    // dozen solves with the factor (26 here), not hundreds.
+    assert!(solution.iterations <= 40, "{} solves", solution.iterations);
 }
 
 #[test]
