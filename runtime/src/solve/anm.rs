@@ -44,7 +44,7 @@ use super::error::SolveError;
 use super::landing::parameter_at_load;
 use super::linearization::{Linearization, SpareTangent, factorize_tangent, load_tangent};
 use super::newton::NewtonOptions;
-use super::path::{PathControl, PathEvent, PathResult, PathState, PathStop};
+use super::path::{OnStep, PathControl, PathEvent, PathResult, PathState, PathStop};
 use super::wavenumber::LOCAL_SHIFT;
 use crate::fem::TaylorTape;
 use crate::linear::eigen::{BucklingOptions, smallest_positive_buckling};
@@ -531,6 +531,7 @@ fn follow_path_in<'scope, 'a: 'scope, M: EnergyModel>(
         state: &run.state,
         relative_residual: start_residual,
         predicted_bifurcation: None,
+        on_step: None,
     };
     if observer(&event) == PathControl::Stop {
         return run.finish(PathStop::Observer, steps_log);
@@ -660,19 +661,24 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
             negative_pivots: self.negative_pivots,
             completed: true,
         };
-        let last_reported =
-            match self.dense_output(step, interior, end.step_length, predicted, observer) {
-                Ok(last) => last,
-                Err((stop, bracket)) => {
-                    // Stopped at an interior point: the step is logged up to there.
-                    record.load_range.1 = self.state.load;
-                    record.completed = false;
-                    steps_log.push(record);
-                    let parts = approximant.into_parts();
-                    self.tail = Some(StepTail::new(series, parts, bracket));
-                    return Ok(Some(stop));
-                }
-            };
+        let last_reported = match self.dense_output(
+            step,
+            interior,
+            (&approximant, end.step_length),
+            predicted,
+            observer,
+        ) {
+            Ok(last) => last,
+            Err((stop, bracket)) => {
+                // Stopped at an interior point: the step is logged up to there.
+                record.load_range.1 = self.state.load;
+                record.completed = false;
+                steps_log.push(record);
+                let parts = approximant.into_parts();
+                self.tail = Some(StepTail::new(series, parts, bracket));
+                return Ok(Some(stop));
+            }
+        };
         if let Some(p) = self.prediction
             && self.bifurcation.is_none()
             && end.state.load >= p
@@ -686,12 +692,19 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
         // sharp turn the two can point apart), taken from the approximant that gave the end.
         self.previous_direction = Some(approximant.derivative(end.step_length));
         self.previous_start = Some((std::mem::replace(&mut self.state, end.state), u_hat));
+        // A corrected end is off the approximant.
+        let evaluate = |a: f64| approximant.evaluate(a);
         let event = PathEvent {
             step,
             interior: false,
             state: &self.state,
             relative_residual: end.residual,
             predicted_bifurcation: predicted,
+            on_step: (end.corrections == 0).then_some(OnStep {
+                parameter: end.step_length,
+                previous: last_reported,
+                evaluate: &evaluate,
+            }),
         };
         if observer(&event) == PathControl::Stop {
             let (parts, bracket) = (approximant.into_parts(), (last_reported, end.step_length));
@@ -1271,15 +1284,15 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
         })
     }
 
-    /// The step's interior points ([`interior_points`], over a step of length `length`); only
-    /// those at the residual tolerance are reported. Returns the path parameter of the last
-    /// point reported (0, the step's start, when none was), or the observer's stop with the
-    /// parameters of the point reported before it and of its own.
+    /// The step's interior points ([`interior_points`] on `approximant`, over a step of length
+    /// `length`); only those at the residual tolerance are reported. Returns the path
+    /// parameter of the last point reported (0, the step's start, when none was), or the
+    /// observer's stop with the parameters of the point reported before it and of its own.
     fn dense_output(
         &mut self,
         step: usize,
         interior: Vec<InteriorPoint>,
-        length: f64,
+        (approximant, length): (&StepApproximant, f64),
         predicted: Option<f64>,
         observer: &mut dyn FnMut(&PathEvent) -> PathControl,
     ) -> Result<f64, (PathStop, (f64, f64))> {
@@ -1287,6 +1300,7 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
         // point's (equally spaced over the step, `interior_points`).
         let mut reported = 0.0;
         let count = interior.len();
+        let evaluate = |a: f64| approximant.evaluate(a);
         for (k, (inner, residual)) in interior.into_iter().enumerate() {
             if residual.is_nan() || residual > self.options.residual_tolerance {
                 continue;
@@ -1298,6 +1312,11 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
                 state: &inner,
                 relative_residual: residual,
                 predicted_bifurcation: predicted,
+                on_step: Some(OnStep {
+                    parameter: a,
+                    previous: reported,
+                    evaluate: &evaluate,
+                }),
             };
             if observer(&event) == PathControl::Stop {
                 self.linearization.statistics.steps = step;

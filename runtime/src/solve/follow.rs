@@ -178,6 +178,7 @@ fn land_last_point<M: EnergyModel>(
         state: &landed.state,
         relative_residual: landed.relative_residual,
         predicted_bifurcation: None,
+        on_step: None,
     };
     // The observer records the landed point (its recording time is part of the path's).
     observer.replace_last(&below, &event);

@@ -102,16 +102,16 @@ pub fn land<M: EnergyModel>(
     None
 }
 
-/// Regula falsi steps of [`land_on_step`].
+/// Regula falsi steps of [`parameter_on_step`].
 const MAX_STEP_LANDING_ITERATIONS: usize = 40;
 
 /// Lands on an amplitude `target` inside the ANM step the path stopped in: the point of the
 /// step's own approximant ([`StepTail`]) between the last two points reported where `measure`
-/// meets the middle of the target's window, found by regula falsi (Illinois) on the path
-/// parameter — no correction, no factorisation: the step evaluates it as it evaluated its
-/// points. `None` (then [`land`] corrects a chord) when the two points do not bracket the aim
-/// on the approximant, no parameter lands within [`MAX_STEP_LANDING_ITERATIONS`], or the
-/// point's relative residual (counted in `linearization`) is above `tolerance`.
+/// meets the middle of the target's window ([`parameter_on_step`]) — no correction, no
+/// factorisation: the step evaluates it as it evaluated its points. `None` (then [`land`]
+/// corrects a chord) when the two points do not bracket the aim on the approximant, no
+/// parameter lands within [`MAX_STEP_LANDING_ITERATIONS`], or the point's relative residual
+/// (counted in `linearization`) is above `tolerance`.
 pub fn land_on_step<M: EnergyModel>(
     linearization: &mut Linearization<'_, M>,
     tail: &StepTail,
@@ -123,11 +123,39 @@ pub fn land_on_step<M: EnergyModel>(
         return None;
     };
     let window = target.tolerance() * value.abs();
-    let aim = value + 0.5 * window;
-    let (low, high) = tail.bracket;
+    let evaluate = |a: f64| tail.evaluate(a);
+    let state = parameter_on_step(
+        &evaluate,
+        measure,
+        tail.bracket,
+        value + 0.5 * window,
+        0.5 * window,
+    )?;
+    let relative = linearization.relative_residual(&state.displacement, state.load);
+    (relative <= tolerance).then_some(ArcCorrection {
+        state,
+        iterations: 0,
+        relative_residual: relative,
+    })
+}
+
+/// The point `evaluate(a)` of a step's approximant, $`a`$ between the path parameters
+/// `(low, high)`, where `measure` is within `half_window` of `aim`: regula falsi (Illinois) on
+/// $`a`$, at most [`MAX_STEP_LANDING_ITERATIONS`] evaluations. `None` when the ends do not
+/// bracket the aim (measure below it at `low`, above it at `high`), a measure is not finite, or
+/// no parameter lands. The measure may have kinks (a maximum over nodes whose node changes):
+/// the bracket still narrows onto the crossing, where an interpolation between sampled points
+/// would not see the kink.
+pub fn parameter_on_step(
+    evaluate: &dyn Fn(f64) -> PathState,
+    measure: &dyn Fn(&PathState) -> f64,
+    (low, high): (f64, f64),
+    aim: f64,
+    half_window: f64,
+) -> Option<PathState> {
     let mut bracket = Bracket {
-        low: (measure(&tail.evaluate(low)) - aim, low),
-        high: (measure(&tail.evaluate(high)) - aim, high),
+        low: (measure(&evaluate(low)) - aim, low),
+        high: (measure(&evaluate(high)) - aim, high),
         side: 0,
     };
     if !(bracket.low.0 < 0.0 && bracket.high.0 > 0.0) {
@@ -135,18 +163,13 @@ pub fn land_on_step<M: EnergyModel>(
     }
     for _ in 0..MAX_STEP_LANDING_ITERATIONS {
         let a = bracket.chord_parameter();
-        let state = tail.evaluate(a);
+        let state = evaluate(a);
         let miss = measure(&state) - aim;
         if !miss.is_finite() {
             return None;
         }
-        if miss.abs() <= 0.5 * window {
-            let relative = linearization.relative_residual(&state.displacement, state.load);
-            return (relative <= tolerance).then_some(ArcCorrection {
-                state,
-                iterations: 0,
-                relative_residual: relative,
-            });
+        if miss.abs() <= half_window {
+            return Some(state);
         }
         bracket.narrow(miss, a);
     }

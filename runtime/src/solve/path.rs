@@ -29,6 +29,35 @@ pub struct PathEvent<'a> {
     pub relative_residual: f64,
     /// Predicted bifurcation load from the tangent at this step's start, when computed.
     pub predicted_bifurcation: Option<f64>,
+    /// Where the point lies on its step's own approximant, when it does (the ANM's dense output
+    /// and uncorrected step ends; not Riks' points, the start, or a landed point): the
+    /// observer can evaluate the path between it and the point reported before it.
+    pub on_step: Option<OnStep<'a>>,
+}
+
+/// A point's place on the approximant of the ANM step it belongs to ([`PathEvent::on_step`]):
+/// every point of the step between `previous` and `parameter` is `evaluate(a)`, as the step
+/// evaluated its own points. An observer lands on a value of its own measure there
+/// ([`landing::parameter_on_step`](super::landing::parameter_on_step)) without a correction.
+#[derive(Clone, Copy)]
+pub struct OnStep<'a> {
+    /// The point's path parameter $`a`$ in its step.
+    pub parameter: f64,
+    /// The path parameter of the point reported before it in the same step (0: the step's
+    /// start, which is the previous step's end).
+    pub previous: f64,
+    /// The step's point at a path parameter.
+    pub evaluate: &'a dyn Fn(f64) -> PathState,
+}
+
+impl std::fmt::Debug for OnStep<'_> {
+    fn fmt(&self, formatter: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        formatter
+            .debug_struct("OnStep")
+            .field("parameter", &self.parameter)
+            .field("previous", &self.previous)
+            .finish_non_exhaustive()
+    }
 }
 
 /// What the observer wants after an event.

@@ -288,6 +288,7 @@ fn trace<M: EnergyModel>(
         state: &start,
         relative_residual: start_residual,
         predicted_bifurcation: None,
+        on_step: None,
     };
     if observer(&event) == PathControl::Stop {
         return (PathStop::Observer, start);
@@ -480,6 +481,7 @@ impl<M: EnergyModel> RiksPath<'_, '_, '_, M> {
                 state: &self.current,
                 relative_residual,
                 predicted_bifurcation: None,
+                on_step: None,
             };
             if observer(&event) == PathControl::Stop {
                 return (PathStop::Observer, self.current);
