@@ -11,6 +11,7 @@
 //! `PathRecorder` keeps what the outputs need in a [`Trace`], [`RunSummary::new`] decides the
 //! result from it, and [`crate::run_outputs`] writes them.
 
+use crate::compare::AMPLITUDE_LEVELS;
 use crate::error::{Error, output_directory_error};
 use crate::output::{PathPoint, Progress, ProgressSink, ProgressTarget, Quantity, RunDirectory};
 use crate::physics::{Layout, Snapshot};
@@ -34,8 +35,11 @@ use wrinkle_runtime::solve::ellipticity::{EllipticityReport, legendre_hadamard};
 use wrinkle_runtime::solve::follow::{
     FollowMethod, FollowOptions, FollowedPath, PathObserver, follow_path,
 };
+use wrinkle_runtime::solve::landing::parameter_on_step;
 use wrinkle_runtime::solve::newton::{NewtonOptions, newton};
-use wrinkle_runtime::solve::path::{PathControl, PathEvent, PathResult, PathState, PathStop};
+use wrinkle_runtime::solve::path::{
+    OnStep, PathControl, PathEvent, PathResult, PathState, PathStop,
+};
 use wrinkle_runtime::solve::riks::{AmplitudeControl, RiksOptions};
 
 /// Path following of a scene, writing its outputs into `output_directory`. Progress goes to
@@ -247,6 +251,11 @@ const PERFECT_FLATNESS: f64 = 1e-8;
 /// a quarter thickness of envelope is half a thickness of physical amplitude.
 const RIKS_MAX_AMPLITUDE_CHANGE: f64 = 0.25;
 
+/// Relative distance from an amplitude level within which a point is landed on it
+/// ([`PathRecorder::land_levels`]): the load there is then the level's to about this much
+/// times $`d\ln\lambda/d\ln a`$, far below the residual tolerance's effect.
+const LEVEL_LANDING_TOLERANCE: f64 = 1e-9;
+
 /// Watches the path: amplitudes, ellipticity at step ends, snapshots; stops at the target or,
 /// without imperfection, past the threshold on the flat fundamental branch.
 struct PathRecorder<'a, 's, M: EnergyModel> {
@@ -305,8 +314,64 @@ impl<M: EnergyModel> PathRecorder<'_, '_, M> {
         control
     }
 
-    /// [`Self::observe`] without its timing.
+    /// [`Self::observe`] without its timing: the points landed on the amplitude levels the
+    /// path crossed since the last point ([`Self::land_levels`]), then the event's.
     fn record(&mut self, event: &PathEvent) -> PathControl {
+        if let Some(on_step) = event.on_step {
+            self.land_levels(event, on_step);
+        }
+        self.record_point(event)
+    }
+
+    /// Records, before `event`, a point on each of [`AMPLITUDE_LEVELS`] (below the target)
+    /// that the path crossed since the point recorded last: landed on the step's own
+    /// approximant (`on_step`) to within [`LEVEL_LANDING_TOLERANCE`] of the level, and kept
+    /// when its relative residual is within the solver's tolerance. The loads at these
+    /// amplitudes (the comparison's and the sweep's columns,
+    /// [`load_at_amplitude`](crate::study::load_at_amplitude)) are then read at a point of the
+    /// path instead of interpolated between two: where the node of the maximum changes between
+    /// two points, the maximum has a kink there, and the interpolation missed it by up to 3e-4
+    /// of the load on example 1's plate at a/h = 2.
+    fn land_levels(&mut self, event: &PathEvent, on_step: OnStep) {
+        let Some(below) = self.trace.points.last().map(|p| p.max_amplitude_over_h) else {
+            return;
+        };
+        let landed: Vec<(PathState, f64)> = {
+            let measure = |state: &PathState| self.amplitude(state);
+            let above = measure(event.state);
+            AMPLITUDE_LEVELS
+                .iter()
+                .filter(|&&level| below < level && level < above && level < self.target)
+                .filter_map(|&level| {
+                    let state = parameter_on_step(
+                        on_step.evaluate,
+                        &measure,
+                        (on_step.previous, on_step.parameter),
+                        level,
+                        LEVEL_LANDING_TOLERANCE * level,
+                    )?;
+                    let residual = self
+                        .problem
+                        .relative_residual(&state.displacement, state.load);
+                    (residual <= self.scene.solver.tolerance).then_some((state, residual))
+                })
+                .collect()
+        };
+        for (state, residual) in &landed {
+            self.record_point(&PathEvent {
+                step: event.step,
+                interior: true,
+                state,
+                relative_residual: *residual,
+                predicted_bifurcation: event.predicted_bifurcation,
+                on_step: None,
+            });
+        }
+    }
+
+    /// Records one point: its amplitudes, the requested states up to it, the profiles it
+    /// reaches, its snapshot; then whether the path stops there.
+    fn record_point(&mut self, event: &PathEvent) -> PathControl {
         let state = event.state;
         let h = self.scene.material.thickness;
         let values = self.problem.dofs().expand(&state.displacement, state.load);

@@ -13,10 +13,12 @@
 //! * the run writes summary.json, path.csv, .vtu files and PNG/SVG plots.
 
 use std::path::PathBuf;
+use wrinkle::compare::AMPLITUDE_LEVELS;
 use wrinkle::output::PathPoint;
 use wrinkle::results::RunSummary;
 use wrinkle::run::run;
 use wrinkle::scene::Scene;
+use wrinkle::study::load_at_amplitude;
 
 fn scene(settings: &[&str]) -> Scene {
     let mut scene = Scene::default();
@@ -451,4 +453,58 @@ fn both_methods_stop_at_max_load_with_the_same_amplitude() {
         amplitudes.push(last.max_amplitude_over_h);
     }
     assert_close_pair(&amplitudes, 1e-5, "a/h at max_load");
+}
+
+/// The loads at the comparison's amplitudes a/h = 0.5, 1, 2 are read at points of the path
+/// landed on them, on the ANM step's own approximant, instead of interpolated between the
+/// points around them: the same loads whatever the steps. At 16 × 8, the paths of order 12
+/// (16 steps) and 20 (9 steps) give loads 0.2–2e-7 apart at the three levels; interpolated
+/// between their other points they were 2.2e-6 to 1.7e-5 apart (the maximum |w| has a kink
+/// where its node changes between two points). Each landed point is an interior point within
+/// 1e-9 of its level, at equilibrium.
+#[test]
+fn loads_at_the_comparison_amplitudes_do_not_depend_on_the_steps() {
+    let loads: Vec<Vec<f64>> = ["solver.order=12", "solver.order=20"]
+        .iter()
+        .map(|order| {
+            let settings = [
+                "mesh.nx=16",
+                "mesh.ny=8",
+                order,
+                "output.plots=false",
+                "output.vtu=false",
+                "output.surface=false",
+            ];
+            let dir = output_directory(&format!("levels-{}", order.replace(['.', '='], "-")));
+            let report = run(&scene(&settings), &dir, true).unwrap();
+            let _ = std::fs::remove_dir_all(&dir);
+            let path = path_of(&report.summary);
+            AMPLITUDE_LEVELS
+                .iter()
+                .map(|&level| {
+                    let at_level: Vec<&PathPoint> = path
+                        .iter()
+                        .filter(|p| (p.max_amplitude_over_h - level).abs() <= 1e-9 * level)
+                        .collect();
+                    assert_eq!(at_level.len(), 1, "{order}: a/h = {level}");
+                    let point = at_level[0];
+                    assert!(point.interior && point.residual <= 1e-6, "{point:?}");
+                    let read = load_at_amplitude(&path, level).unwrap();
+                    assert!(
+                        (read - point.lambda).abs() <= 1e-10 * point.lambda,
+                        "{order}, a/h = {level}: read {read}, landed {}",
+                        point.lambda
+                    );
+                    read
+                })
+                .collect()
+        })
+        .collect();
+    for (k, level) in AMPLITUDE_LEVELS.iter().enumerate() {
+        let (low, high) = (loads[0][k], loads[1][k]);
+        assert!(
+            (low - high).abs() <= 1e-6 * low,
+            "load at a/h = {level}: order 12 {low}, order 20 {high}"
+        );
+    }
 }
