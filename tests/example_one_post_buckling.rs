@@ -458,10 +458,10 @@ fn both_methods_stop_at_max_load_with_the_same_amplitude() {
 /// The loads at the comparison's amplitudes a/h = 0.5, 1, 2 are read at points of the path
 /// landed on them, on the ANM step's own approximant, instead of interpolated between the
 /// points around them: the same loads whatever the steps. At 16 × 8, the paths of order 12
-/// (16 steps) and 20 (9 steps) give loads 0.2–2e-7 apart at the three levels; interpolated
-/// between their other points they were 2.2e-6 to 1.7e-5 apart (the maximum |w| has a kink
-/// where its node changes between two points). Each landed point is an interior point within
-/// 1e-9 of its level, at equilibrium.
+/// (16 steps) and 20 (9 steps) give loads 0.7–1.7e-7 apart at the three levels; interpolated
+/// between their other points they were 1.7e-5, 1.2e-5 and 4e-7 apart (the maximum |w| has a
+/// kink where its node changes between two points). Each landed point is an interior point
+/// within 1e-9 of its level, at equilibrium.
 #[test]
 fn loads_at_the_comparison_amplitudes_do_not_depend_on_the_steps() {
     let loads: Vec<Vec<f64>> = ["solver.order=12", "solver.order=20"]
