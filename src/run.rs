@@ -317,10 +317,19 @@ impl<M: EnergyModel> PathRecorder<'_, '_, M> {
     /// [`Self::observe`] without its timing: the points landed on the amplitude levels the
     /// path crossed since the last point ([`Self::land_levels`]), then the event's.
     fn record(&mut self, event: &PathEvent) -> PathControl {
+        let (values, max_amplitude) = self.measured(event.state);
         if let Some(on_step) = event.on_step {
-            self.land_levels(event, on_step);
+            let above = max_amplitude / self.scene.material.thickness;
+            self.land_levels(event, on_step, above);
         }
-        self.record_point(event)
+        self.record_point(event, values, max_amplitude)
+    }
+
+    /// The global nodal values of `state` and its largest physical amplitude (mm).
+    fn measured(&self, state: &PathState) -> (Vec<f64>, f64) {
+        let values = self.problem.dofs().expand(&state.displacement, state.load);
+        let max_amplitude = self.snapshot(&values).max_amplitude();
+        (values, max_amplitude)
     }
 
     /// Records, before `event`, a point on each of [`AMPLITUDE_LEVELS`] (below the target)
@@ -331,14 +340,13 @@ impl<M: EnergyModel> PathRecorder<'_, '_, M> {
     /// [`load_at_amplitude`](crate::study::load_at_amplitude)) are then read at a point of the
     /// path instead of interpolated between two: where the node of the maximum changes between
     /// two points, the maximum has a kink there, and the interpolation missed it by up to 3e-4
-    /// of the load on example 1's plate at a/h = 2.
-    fn land_levels(&mut self, event: &PathEvent, on_step: OnStep) {
+    /// of the load on example 1's plate at a/h = 2. `above` is the event's $`\max|w|/h`$.
+    fn land_levels(&mut self, event: &PathEvent, on_step: OnStep, above: f64) {
         let Some(below) = self.trace.points.last().map(|p| p.max_amplitude_over_h) else {
             return;
         };
         let landed: Vec<(PathState, f64)> = {
             let measure = |state: &PathState| self.amplitude(state);
-            let above = measure(event.state);
             AMPLITUDE_LEVELS
                 .iter()
                 .filter(|&&level| below < level && level < above && level < self.target)
@@ -358,29 +366,36 @@ impl<M: EnergyModel> PathRecorder<'_, '_, M> {
                 .collect()
         };
         for (state, residual) in &landed {
-            self.record_point(&PathEvent {
+            let (values, max_amplitude) = self.measured(state);
+            let event = PathEvent {
                 step: event.step,
                 interior: true,
                 state,
                 relative_residual: *residual,
                 predicted_bifurcation: event.predicted_bifurcation,
                 on_step: None,
-            });
+            };
+            self.record_point(&event, values, max_amplitude);
         }
     }
 
-    /// Records one point: its amplitudes, the requested states up to it, the profiles it
+    /// Records one point, whose global nodal values and largest physical amplitude are
+    /// [`Self::measured`]: its amplitudes, the requested states up to it, the profiles it
     /// reaches, its snapshot; then whether the path stops there.
-    fn record_point(&mut self, event: &PathEvent) -> PathControl {
+    fn record_point(
+        &mut self,
+        event: &PathEvent,
+        values: Vec<f64>,
+        max_amplitude: f64,
+    ) -> PathControl {
         let state = event.state;
         let h = self.scene.material.thickness;
-        let values = self.problem.dofs().expand(&state.displacement, state.load);
         let mesh: &Mesh = self.problem.assembler.mesh();
         let bounds = mesh.bounds();
         let centre = [0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3])];
-        let snapshot = self.snapshot(&values);
-        let max_amplitude = snapshot.max_amplitude();
-        let centre_amplitude = snapshot.centre_amplitude(centre, self.wavelength);
+        let centre_amplitude = self
+            .snapshot(&values)
+            .centre_amplitude(centre, self.wavelength);
         let biaxial = self.scene.load.kind == LoadKind::Biaxial;
         self.trace.points.push(PathPoint {
             step: event.step,
@@ -855,8 +870,7 @@ impl<M: EnergyModel> PathObserver for PathRecorder<'_, '_, M> {
 
     /// $`\max|w|/h`$ of the physical deflection.
     fn amplitude(&self, state: &PathState) -> f64 {
-        let values = self.problem.dofs().expand(&state.displacement, state.load);
-        self.snapshot(&values).max_amplitude() / self.scene.material.thickness
+        self.measured(state).1 / self.scene.material.thickness
     }
 
     /// An interrupted path is left where it stopped.

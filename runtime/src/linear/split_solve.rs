@@ -186,16 +186,17 @@ impl SolveSplit {
                 break;
             }
         }
+        let best = best?;
+        if best.estimate() as f64 > WORTHWHILE_FRACTION * total as f64 {
+            return None;
+        }
         let Candidate {
             top_entries,
             mut top,
             load,
             roots,
-        } = best?;
-        if ((top_entries + load[0].max(load[1])) as f64) > WORTHWHILE_FRACTION * total as f64
-            || load[0] == 0
-            || load[1] == 0
-        {
+        } = best;
+        if load[0] == 0 || load[1] == 0 {
             return None;
         }
         top.sort_unstable();
@@ -335,20 +336,7 @@ fn forward(
     let (start, pattern, diagonal_block, below) = supernode_parts(factor, s);
     let size = diagonal_block.ncols();
     let mut own = MatMut::from_column_major_slice_mut(&mut x[start..start + size], size, 1);
-    match diagonal {
-        Diagonal::Cholesky => triangular::solve_lower_triangular_in_place_with_conj(
-            diagonal_block,
-            Conj::No,
-            own.as_mut(),
-            Par::Seq,
-        ),
-        Diagonal::Pivots => triangular::solve_unit_lower_triangular_in_place_with_conj(
-            diagonal_block,
-            Conj::No,
-            own.as_mut(),
-            Par::Seq,
-        ),
-    }
+    diagonal_solve(diagonal_block, diagonal, false, own.as_mut());
     let updates =
         MatMut::from_column_major_slice_mut(&mut scratch[..pattern.len()], pattern.len(), 1);
     matmul_with_conj(
@@ -392,18 +380,33 @@ fn backward(
         -1.0,
         Par::Seq,
     );
-    match diagonal {
-        Diagonal::Cholesky => triangular::solve_upper_triangular_in_place_with_conj(
-            diagonal_block.transpose(),
-            Conj::No,
-            own.as_mut(),
-            Par::Seq,
-        ),
-        Diagonal::Pivots => triangular::solve_unit_upper_triangular_in_place_with_conj(
-            diagonal_block.transpose(),
-            Conj::No,
-            own.as_mut(),
-            Par::Seq,
+    diagonal_solve(diagonal_block, diagonal, true, own);
+}
+
+/// Solves in place with a supernode's diagonal block $`L_{ss}`$, or with $`L_{ss}^\top`$ when
+/// `transposed`; its diagonal taken as ones for $`LDL^\top`$ (where it holds $`D`$).
+fn diagonal_solve(
+    block: MatRef<'_, f64>,
+    diagonal: Diagonal,
+    transposed: bool,
+    own: MatMut<'_, f64>,
+) {
+    let (conj, par) = (Conj::No, Par::Seq);
+    match (diagonal, transposed) {
+        (Diagonal::Cholesky, false) => {
+            triangular::solve_lower_triangular_in_place_with_conj(block, conj, own, par)
+        }
+        (Diagonal::Pivots, false) => {
+            triangular::solve_unit_lower_triangular_in_place_with_conj(block, conj, own, par)
+        }
+        (Diagonal::Cholesky, true) => {
+            triangular::solve_upper_triangular_in_place_with_conj(block.transpose(), conj, own, par)
+        }
+        (Diagonal::Pivots, true) => triangular::solve_unit_upper_triangular_in_place_with_conj(
+            block.transpose(),
+            conj,
+            own,
+            par,
         ),
     }
 }
