@@ -10,12 +10,16 @@
 //!   Taylor-mode kernels apply to their per-point tapes.
 //! * [`PadeApproximant`]: rational approximants with a common denominator that extend the
 //!   validity range of a step ([`PadeApproximant::pade_step_length`]).
+//! * [`ExponentialMap`]: the series re-expanded in $`s = \ln(1 + a/R)`$, which removes a
+//!   singularity behind the step at $`a = -R`$ ([`singularity_behind`]).
 
+mod mapped;
 mod pade;
 pub mod recurrence;
 mod scalar_series;
 mod vector_series;
 
+pub use mapped::{ALTERNATING_COSINE_THRESHOLD, ExponentialMap, singularity_behind};
 pub use pade::{GramSchmidt, PADE_POLE_SAFETY_FACTOR, PadeApproximant, SPURIOUS_RESIDUE};
 pub use scalar_series::{MAX_SERIES_LEN, Series};
 pub use vector_series::{

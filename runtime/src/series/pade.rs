@@ -3,7 +3,7 @@
 
 use nalgebra::{DMatrix, Schur};
 
-use super::vector_series::step_length_from_norms;
+use super::vector_series::{checked_order, step_length_from_norms};
 use super::{PathSeries, SeriesError};
 use crate::linear::vector::{dot, norm};
 
@@ -369,19 +369,6 @@ impl PadeApproximant {
         combined.truncate(self.dimension);
         (combined, load)
     }
-}
-
-/// The order $`N \ge 2`$ of a valid series.
-fn checked_order(series: &PathSeries) -> Result<usize, SeriesError> {
-    series.validate()?;
-    let order = series.order();
-    if order < 2 {
-        return Err(SeriesError::TooFewOrders {
-            required: 2,
-            found: order,
-        });
-    }
-    Ok(order)
 }
 
 /// Where the search of [`PadeApproximant::pade_step_length_with_pole_safety`] stands after

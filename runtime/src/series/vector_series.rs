@@ -244,3 +244,16 @@ pub fn geometric_ratio(series: &PathSeries) -> Option<f64> {
     }
     Some(radius)
 }
+
+/// The order $`N \ge 2`$ of a valid series.
+pub(super) fn checked_order(series: &PathSeries) -> Result<usize, SeriesError> {
+    series.validate()?;
+    let order = series.order();
+    if order < 2 {
+        return Err(SeriesError::TooFewOrders {
+            required: 2,
+            found: order,
+        });
+    }
+    Ok(order)
+}
