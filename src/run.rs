@@ -816,6 +816,7 @@ pub(crate) fn anm_options(scene: &Scene, max_load: Option<f64>) -> AnmOptions {
         max_steps: scene.solver.max_steps,
         max_load,
         pade: scene.solver.pade,
+        exponential_map: scene.solver.exponential_map,
         corrector: NewtonOptions {
             tolerance: scene.solver.tolerance * 1e-3,
             max_iterations: 12,

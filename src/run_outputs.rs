@@ -603,9 +603,15 @@ fn summary_table(context: &RunContext, summary: &RunSummary) -> SummaryTable {
     let last = summary.path.last();
     SummaryTable {
         model: summary.model.to_string(),
-        method: match (scene.solver.method, scene.solver.pade) {
-            (PathMethod::Anm, true) => "ANM + Padé".to_string(),
-            (method, _) => method.as_str().to_uppercase(),
+        method: match (
+            scene.solver.method,
+            scene.solver.pade,
+            scene.solver.exponential_map,
+        ) {
+            (PathMethod::Anm, true, true) => "ANM + Padé + exp. map".to_string(),
+            (PathMethod::Anm, true, false) => "ANM + Padé".to_string(),
+            (PathMethod::Anm, false, true) => "ANM + exp. map".to_string(),
+            (method, _, _) => method.as_str().to_uppercase(),
         },
         dofs: summary.dofs,
         wavenumber: summary.wavenumber,

@@ -304,11 +304,16 @@ pub fn buckle(scene: &Scene, quiet: bool) -> Result<Threshold, Error> {
 
 /// Notes for keys the scene gives that it does not use: `load.tension_y` under the strip load
 /// (example 2 has no tension); the ANM's settings (`solver.order`, `solver.series_tolerance`,
-/// `solver.pade`) under Riks, which has no series.
+/// `solver.pade`, `solver.exponential_map`) under Riks, which has no series.
 fn unused_keys_notes(scene: &Scene) -> Vec<String> {
     let mut notes = Vec::new();
     if scene.solver.method == PathMethod::Riks {
-        for key in ["solver.order", "solver.series_tolerance", "solver.pade"] {
+        for key in [
+            "solver.order",
+            "solver.series_tolerance",
+            "solver.pade",
+            "solver.exponential_map",
+        ] {
             if scene.was_given(key) {
                 notes.push(format!(
                     "`{key}` is ignored: it sets the ANM's series, and `solver.method = \"riks\"` has none"

@@ -171,6 +171,8 @@ fn anm_step_record(step: &AnmStep) -> AnmStepRecord {
         step_length: step.step_length,
         series_step_length: step.series_step_length,
         pade_step_length: step.pade_step_length,
+        mapped_step_length: step.mapped_step_length,
+        singularity_behind: step.singularity_behind,
         end_residual: step.end_residual,
         correction_iterations: step.correction_iterations,
         crossings_redone: step.crossings_redone,

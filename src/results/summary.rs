@@ -179,6 +179,11 @@ pub struct AnmStepRecord {
     pub series_step_length: f64,
     /// Range Padé allowed (when enabled).
     pub pade_step_length: Option<f64>,
+    /// Range the exponential map allowed (when enabled and the series showed a singularity
+    /// behind the step).
+    pub mapped_step_length: Option<f64>,
+    /// Distance of the singularity behind the step's start its series showed, if any.
+    pub singularity_behind: Option<f64>,
     /// Relative residual at the accepted end point.
     pub end_residual: f64,
     /// Newton iterations of the correction (0 = none needed).

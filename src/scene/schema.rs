@@ -262,6 +262,15 @@ scene_schema! {
         /// ANM. The default is the fastest method measured on every registered model
         /// (`docs/benchmarks.md`)
         pade => pade: bool = true, Flag, Unit::NONE;
+        /// re-expand an ANM step's series in $`s = \ln(1 + a/R)`$ when its last orders
+        /// alternate (a singularity behind the step, at $`a = -R`$: past the knee of an
+        /// imperfect path, the imperfect bifurcation left behind). That singularity limits the
+        /// plain series and Padé alike to a fraction of the distance the path has come from it;
+        /// in $`s`$ it is gone. The step takes the longest of the series', Padé's and this
+        /// range; an end on the map must meet a tenth of the residual tolerance (`tolerance`),
+        /// and one that misses it, or crosses a critical point, is shortened like a Padé end.
+        /// `false`: series and Padé only (docs/benchmarks.md, "Round ten")
+        exponential_map => exponential_map: bool = true, Flag, Unit::NONE;
         /// `"anm"` (Asymptotic Numerical Method) or `"riks"` (Newton–Riks arc-length baseline:
         /// spherical constraint, a dimensionless arc length in units of the linear response to
         /// $`\lambda_c`$ and of $`\lambda_c`$, at most 0.3 and adapted to the Newton iterations;
@@ -269,7 +278,7 @@ scene_schema! {
         /// rising, jumped over the bifurcation and is halved, up to 12 times; a step changes
         /// the deflection (envelope) fields by at most $`h/4`$, so that the knee is resolved
         /// where the in-plane displacements dominate the arc length; `order`,
-        /// `series_tolerance` and `pade` unused)
+        /// `series_tolerance`, `pade` and `exponential_map` unused)
         method => method: PathMethod = PathMethod::Anm, one_of::<PathMethod>(), Unit::NONE;
     }
 

@@ -14,9 +14,11 @@
 //!   $`\lambda_n = -\lambda_1\langle\hat U_n, U_1\rangle`$ and $`U_n = \lambda_n\hat U + \hat U_n`$.
 //!
 //! Step length $`a_{\max} = (\epsilon\|U_1\|/\|U_N\|)^{1/(N-1)}`$ or, optionally, the Padé
-//! approximants' longer range. The residual is checked at the end of every step; a Riks
-//! (arc-length) correction brings it back under the tolerance when needed (or the step is
-//! halved).
+//! approximants' longer range, or that of the series re-expanded in $`s = \ln(1 + a/R)`$ when
+//! its last orders show a singularity behind the step at $`a = -R`$
+//! ([`ExponentialMap`](crate::series::ExponentialMap)). The residual is checked at the end of
+//! every step; a Riks (arc-length) correction brings it back under the tolerance when needed
+//! (or the step is halved).
 //!
 //! Each step is oriented with the path tangent at the end of the previous one.
 //!
@@ -54,8 +56,8 @@ use crate::linear::vector::{axpy, dot};
 use crate::model::EnergyModel;
 use crate::problem::Problem;
 use crate::series::{
-    GramSchmidt, MAX_SERIES_LEN, PadeApproximant, PathSeries, Series, geometric_ratio,
-    series_step_length,
+    ExponentialMap, GramSchmidt, MAX_SERIES_LEN, PadeApproximant, PathSeries, Series,
+    geometric_ratio, series_step_length, singularity_behind,
 };
 use std::time::Instant;
 
@@ -77,6 +79,14 @@ pub struct AnmOptions {
     /// pivots (it jumped over a critical point) is redone with the series' range; one whose end
     /// misses the residual tolerance is halved towards that range, not corrected.
     pub pade: bool,
+    /// Re-expand the series in $`s = \ln(1 + a/R)`$ when its last orders show a singularity
+    /// behind the step at $`a = -R`$ ([`ExponentialMap`], default: on): past the knee of an
+    /// imperfect path, where that singularity (the imperfect bifurcation left behind) limits
+    /// the series and Padé alike to a fraction of the distance travelled. The step takes the
+    /// longer of this range and Padé's. An end on the map must meet a tenth of
+    /// `residual_tolerance` (`MAPPED_END_RESIDUAL_FRACTION`); one that misses it is halved
+    /// like a Padé end, or gives way to Padé's range once that reaches further.
+    pub exponential_map: bool,
     /// Points evaluated inside each step (dense output).
     pub interior_points: usize,
     /// Iteration cap of the corrector (a Riks correction on the arc through the step's end
@@ -106,6 +116,7 @@ impl Default for AnmOptions {
             max_steps: 200,
             max_load: None,
             pade: true,
+            exponential_map: true,
             interior_points: 10,
             corrector: NewtonOptions {
                 tolerance: 1e-9,
@@ -117,6 +128,13 @@ impl Default for AnmOptions {
             max_step_length: f64::INFINITY,
         }
     }
+}
+
+/// The ranges the extensions of a step's series offered ([`AnmRun::approximant`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct Offered {
+    pade: Option<f64>,
+    map: Option<f64>,
 }
 
 /// Per-step diagnostics kept by the solver.
@@ -135,6 +153,14 @@ pub struct AnmStep {
     /// the residual tolerance and was shortened towards the series' range, or jumped over a
     /// critical point and the step was redone with the series' range (`crossings_redone`).
     pub pade_step_length: Option<f64>,
+    /// Range the exponential map offered ([`ExponentialMap`]: when enabled and the series
+    /// showed a singularity behind the step, at [`AnmStep::singularity_behind`]). The step
+    /// used it when it was the longest range offered and `step_length` exceeds
+    /// `series_step_length`.
+    pub mapped_step_length: Option<f64>,
+    /// Distance of a singularity behind the step's start detected in the series' last orders
+    /// ([`singularity_behind`]), if any.
+    pub singularity_behind: Option<f64>,
     /// Relative residual at the accepted end point (after the correction, if any).
     pub end_residual: f64,
     /// Newton iterations of the correction (0 = none needed).
@@ -345,60 +371,91 @@ pub fn compute_series_generic<M: EnergyModel>(
     Ok((series, u_hat))
 }
 
+/// What lengthens a step beyond the plain series' range.
+#[derive(Clone, Debug)]
+enum Extension {
+    /// The Padé approximants' common-denominator form ([`PadeApproximant`]).
+    Pade(PadeApproximant),
+    /// The series re-expanded in $`s = \ln(1 + a/R)`$ past a singularity behind the step
+    /// ([`ExponentialMap`]).
+    Map(ExponentialMap),
+}
+
+impl Extension {
+    fn evaluate(&self, a: f64) -> (Vec<f64>, f64) {
+        match self {
+            Extension::Pade(pade) => pade.evaluate(a),
+            Extension::Map(map) => map.evaluate(a),
+        }
+    }
+
+    fn evaluate_derivative(&self, a: f64) -> (Vec<f64>, f64) {
+        match self {
+            Extension::Pade(pade) => pade.evaluate_derivative(a),
+            Extension::Map(map) => map.evaluate_derivative(a),
+        }
+    }
+}
+
 /// What one step evaluates: its truncated series up to the series' own range, and beyond it
-/// the Padé approximant when that allows a finite, longer step.
+/// the extension (Padé approximant or exponential map) when that allows a finite, longer step.
 struct StepApproximant<'s> {
     series: &'s PathSeries,
     /// The plain series' range.
     plain: f64,
-    /// The Padé approximant and its range, when it extends the step.
-    pade: Option<(PadeApproximant, f64)>,
+    /// The extension and its range, when it lengthens the step.
+    extension: Option<(Extension, f64)>,
+    /// The other extension, with a shorter range that still lengthens the step: the step
+    /// falls back on it when an end on the exponential map misses its residual tolerance
+    /// ([`AnmRun::accept_end`]).
+    fallback: Option<(Extension, f64)>,
 }
 
 impl StepApproximant<'_> {
     /// The range the step tries first.
     fn range(&self) -> f64 {
-        self.pade.as_ref().map_or(self.plain, |&(_, range)| range)
+        self.extension
+            .as_ref()
+            .map_or(self.plain, |&(_, range)| range)
     }
 
-    /// The Padé approximant when it is what the step evaluates at `a`.
-    fn pade_at(&self, a: f64) -> Option<&PadeApproximant> {
-        self.pade
+    /// The extension when it is what the step evaluates at `a`.
+    fn extension_at(&self, a: f64) -> Option<&Extension> {
+        self.extension
             .as_ref()
             .filter(|_| a > self.plain)
-            .map(|(pade, _)| pade)
+            .map(|(extension, _)| extension)
     }
 
     fn evaluate(&self, a: f64) -> PathState {
-        evaluate_approximant(self.series, self.plain, self.pade.as_ref(), a)
+        evaluate_approximant(self.series, self.plain, self.extension.as_ref(), a)
     }
 
-    /// The series' range and the Padé approximant with its range, without the series
-    /// borrowed.
-    fn into_parts(self) -> (f64, Option<(PadeApproximant, f64)>) {
-        (self.plain, self.pade)
+    /// The series' range and the extension with its range, without the series borrowed.
+    fn into_parts(self) -> (f64, Option<(Extension, f64)>) {
+        (self.plain, self.extension)
     }
 
     /// The path tangent at `a`, from the approximant evaluated there: beyond the series' range
     /// its own derivative is meaningless and can point backwards.
     fn derivative(&self, a: f64) -> (Vec<f64>, f64) {
-        match self.pade_at(a) {
-            Some(pade) => pade.evaluate_derivative(a),
+        match self.extension_at(a) {
+            Some(extension) => extension.evaluate_derivative(a),
             None => self.series.evaluate_derivative(a),
         }
     }
 }
 
-/// A step's approximant at `a`: the Padé approximant beyond the series' range `plain` when
-/// there is one, else the series.
+/// A step's approximant at `a`: the extension beyond the series' range `plain` when there is
+/// one, else the series.
 fn evaluate_approximant(
     series: &PathSeries,
     plain: f64,
-    pade: Option<&(PadeApproximant, f64)>,
+    extension: Option<&(Extension, f64)>,
     a: f64,
 ) -> PathState {
-    let (displacement, load) = match pade.filter(|_| a > plain) {
-        Some((pade, _)) => pade.evaluate(a),
+    let (displacement, load) = match extension.filter(|_| a > plain) {
+        Some((extension, _)) => extension.evaluate(a),
         None => series.evaluate(a),
     };
     PathState { displacement, load }
@@ -411,7 +468,7 @@ fn evaluate_approximant(
 pub struct StepTail {
     series: PathSeries,
     plain: f64,
-    pade: Option<(PadeApproximant, f64)>,
+    extension: Option<(Extension, f64)>,
     /// Parameters $`a`$ of the point reported before the stop and of the stop.
     pub bracket: (f64, f64),
 }
@@ -421,20 +478,20 @@ impl StepTail {
     /// [`parts`](StepApproximant::into_parts), stopped between the parameters `bracket`.
     fn new(
         series: PathSeries,
-        (plain, pade): (f64, Option<(PadeApproximant, f64)>),
+        (plain, extension): (f64, Option<(Extension, f64)>),
         bracket: (f64, f64),
     ) -> Self {
         Self {
             series,
             plain,
-            pade,
+            extension,
             bracket,
         }
     }
 
     /// The step's point at parameter `a` (as the step evaluated its own points).
     pub fn evaluate(&self, a: f64) -> PathState {
-        evaluate_approximant(&self.series, self.plain, self.pade.as_ref(), a)
+        evaluate_approximant(&self.series, self.plain, self.extension.as_ref(), a)
     }
 }
 
@@ -451,6 +508,15 @@ impl StepTail {
 /// second step ends at 0.76 mm, and the path takes 16 steps (docs/benchmarks.md, "Round
 /// four").
 const UNBOUNDED_PADE_RANGE: f64 = 1024.0;
+
+/// The fraction of the residual tolerance an end on the exponential map must meet
+/// ([`ExponentialMap`]); a longer end is shortened towards the series' range. Its range comes
+/// from the mapped coefficients' decay, which says less about the end's accuracy than the plain
+/// series' does: on the strip's plate (example 2, 112 × 64) past the knee, mapped ends accepted
+/// at the full tolerance (relative residuals 9.5e-7 and 5.8e-7) moved the load at a/h = 2 by
+/// 1.3e-4 (17.15166 against 17.14951 at a tolerance of 1e-8), where series and Padé ends
+/// (1e-8 to 2e-7) kept it within 2e-6.
+const MAPPED_END_RESIDUAL_FRACTION: f64 = 0.1;
 
 /// Halvings of a series step whose end crossed a critical point before the crossing is taken
 /// as the path's own (a limit point or a perfect bifurcation, located at the next step).
@@ -652,7 +718,9 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
             load_range: (self.state.load, end.state.load),
             step_length: end.step_length,
             series_step_length: series_range,
-            pade_step_length: offered,
+            pade_step_length: offered.pade,
+            mapped_step_length: offered.map,
+            singularity_behind: singularity_behind(&series),
             end_residual: end.residual,
             correction_iterations: end.corrections,
             crossings_redone,
@@ -759,7 +827,7 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
         let mut end = self.accept_end(step, approximant)?;
         let mut halvings = 0;
         let mut crossings_redone = 0;
-        let mut shortened_pade = false;
+        let mut shortened_extension = false;
         loop {
             let (jumped, interior) = self.jumped_over_critical_point(step, &end, approximant)?;
             if !jumped {
@@ -772,26 +840,31 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
             // example 2 with a 1e-5 imperfection ended at λ = 36 instead of 24.6 mm). A Padé
             // step is redone once with a shorter Padé range, then with the series' own range; a
             // series step with half its length.
-            if approximant.pade_at(end.step_length).is_some() {
+            if approximant.extension_at(end.step_length).is_some() {
                 // A Padé end far along a nearly linear pre-buckling path passes the residual
                 // check past λ_c (the strip's plate: from λ = 0.03 mm to beyond 13.8 mm); the
                 // series' range would restart it from a fraction of a millimetre. Once, the
                 // Padé range is shortened until the approximant's load is 90 % of the way to
                 // the expected critical load; then the series' range.
-                match self.pade_range_below_guess(approximant, end.step_length) {
-                    Some(range) if !shortened_pade => {
-                        shortened_pade = true;
-                        if let Some((_, pade_range)) = approximant.pade.as_mut() {
-                            *pade_range = range;
+                match self.extension_range_below_guess(approximant, end.step_length) {
+                    Some(range) if !shortened_extension => {
+                        shortened_extension = true;
+                        approximant.fallback = None;
+                        if let Some((_, extended)) = approximant.extension.as_mut() {
+                            *extended = range;
                         }
                     }
-                    _ => approximant.pade = None,
+                    _ => {
+                        approximant.extension = None;
+                        approximant.fallback = None;
+                    }
                 }
             } else if halvings < MAX_CROSSING_HALVINGS && self.negative_pivots == Some(0) {
                 // Only a stable start is kept stable: once the path is on an unstable branch
                 // (a crossing taken as its own), further crossings are the branch's.
                 halvings += 1;
-                approximant.pade = None;
+                approximant.extension = None;
+                approximant.fallback = None;
                 approximant.plain = 0.5 * end.step_length;
             } else {
                 // Still crossing in a small fraction of the step: a critical point of the path
@@ -809,7 +882,11 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
     /// expected critical load ([`AnmOptions::bifurcation_load_guess`], known before the path:
     /// the same on any number of threads); `None` without a guess above the start, or when no
     /// such range is longer than the series' own.
-    fn pade_range_below_guess(&self, approximant: &StepApproximant, crossed: f64) -> Option<f64> {
+    fn extension_range_below_guess(
+        &self,
+        approximant: &StepApproximant,
+        crossed: f64,
+    ) -> Option<f64> {
         let start = self.state.load;
         let guess = self
             .options
@@ -1134,14 +1211,18 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
         self.prediction = Some(f64::INFINITY);
     }
 
-    /// What the step evaluates, and the range Padé offered (when enabled). A Padé range
-    /// without bound becomes [`UNBOUNDED_PADE_RANGE`] times the series' range.
+    /// What the step evaluates, and the ranges Padé and the exponential map offered (when
+    /// enabled and, for the map, when the series shows a singularity behind the step,
+    /// [`singularity_behind`]). A Padé range without bound becomes [`UNBOUNDED_PADE_RANGE`]
+    /// times the series' range. The step is lengthened by whichever of the two reaches
+    /// further, when it reaches beyond the series' own range.
     fn approximant<'s>(
         &self,
         series: &'s PathSeries,
         orthogonalized: Option<GramSchmidt>,
-    ) -> (StepApproximant<'s>, Option<f64>) {
-        let plain = series_step_length(series, self.options.series_tolerance);
+    ) -> (StepApproximant<'s>, Offered) {
+        let tolerance = self.options.series_tolerance;
+        let plain = series_step_length(series, tolerance);
         let pade = self
             .options
             .pade
@@ -1151,24 +1232,46 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
             })
             .and_then(Result::ok)
             .map(|p| {
-                let range = p.pade_step_length(self.options.series_tolerance);
+                let range = p.pade_step_length(tolerance);
                 (p, range)
             });
-        let offered = pade.as_ref().map(|&(_, range)| range);
+        let map = self
+            .options
+            .exponential_map
+            .then(|| singularity_behind(series))
+            .flatten()
+            .and_then(|radius| ExponentialMap::new(series, radius).ok())
+            .map(|map| {
+                let range = map.step_length(tolerance);
+                (map, range)
+            });
+        let offered = Offered {
+            pade: pade.as_ref().map(|&(_, range)| range),
+            map: map.as_ref().map(|&(_, range)| range),
+        };
+        let pade = pade.map(|(pade, range)| {
+            let unbounded = !range.is_finite() && plain.is_finite();
+            let range = if unbounded {
+                UNBOUNDED_PADE_RANGE * plain
+            } else {
+                range
+            };
+            (Extension::Pade(pade), range)
+        });
+        let map = map.map(|(map, range)| (Extension::Map(map), range));
+        let mut extensions: Vec<(Extension, f64)> = [pade, map]
+            .into_iter()
+            .flatten()
+            .filter(|&(_, range)| range.is_finite() && range > plain)
+            .collect();
+        // Longest first; the other is the fallback.
+        extensions.sort_by(|x, y| y.1.total_cmp(&x.1));
+        let mut extensions = extensions.into_iter();
         let approximant = StepApproximant {
             series,
             plain,
-            pade: pade
-                .map(|(pade, range)| {
-                    let unbounded = !range.is_finite() && plain.is_finite();
-                    let range = if unbounded {
-                        UNBOUNDED_PADE_RANGE * plain
-                    } else {
-                        range
-                    };
-                    (pade, range)
-                })
-                .filter(|&(_, range)| range.is_finite() && range > plain),
+            extension: extensions.next(),
+            fallback: extensions.next(),
         };
         (approximant, offered)
     }
@@ -1178,11 +1281,14 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
     /// misses the tolerance is halved towards the series' range first and never corrected: in
     /// the strip of example 2 such an end (range 522 against the series' 54) was corrected in
     /// 2 iterations, but 6 of its 10 interior points missed the tolerance, and the path's last
-    /// point overshot the amplitude target 4 h to 6.2 h.
+    /// point overshot the amplitude target 4 h to 6.2 h. An end on the exponential map that
+    /// misses its tolerance ([`MAPPED_END_RESIDUAL_FRACTION`]) is halved like a Padé end, or
+    /// gives way to the other extension ([`StepApproximant::fallback`]) once that reaches
+    /// further than the halved end.
     fn accept_end(
         &mut self,
         step: usize,
-        approximant: &StepApproximant,
+        approximant: &mut StepApproximant,
     ) -> Result<AcceptedEnd, SolveError> {
         let tolerance = self.options.residual_tolerance;
         let (mut a, mut hit_max_load) = self.first_end(approximant);
@@ -1194,7 +1300,11 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
             let residual = self
                 .linearization
                 .relative_residual(&candidate.displacement, candidate.load);
-            if residual.is_finite() && residual <= tolerance {
+            let accepted = match approximant.extension_at(a) {
+                Some(Extension::Map(_)) => MAPPED_END_RESIDUAL_FRACTION * tolerance,
+                _ => tolerance,
+            };
+            if residual.is_finite() && residual <= accepted {
                 return Ok(AcceptedEnd {
                     state: candidate,
                     residual,
@@ -1203,7 +1313,22 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
                     hit_max_load,
                 });
             }
-            if approximant.pade_at(a).is_some() {
+            if matches!(approximant.extension_at(a), Some(Extension::Map(_)))
+                && approximant
+                    .fallback
+                    .as_ref()
+                    .is_some_and(|&(_, range)| range >= 0.5 * a)
+            {
+                // The map's end halved would be shorter than the other extension's range: that
+                // is tried instead. On the strip's plate (the example's graded 56 × 16 mesh) map
+                // ends of 507 and 823 were halved down to the series' 61 and 109, where Padé's
+                // 240 and 1273 passed.
+                self.linearization.statistics.rejected_steps += 1;
+                approximant.extension = approximant.fallback.take();
+                (a, hit_max_load) = self.first_end(approximant);
+                continue;
+            }
+            if approximant.extension_at(a).is_some() {
                 // A Padé end off the path: the Padé range over-estimated the approximant's
                 // accuracy, and the step's interior is no better than its end. It is shortened
                 // towards the series' range, not corrected (a corrected end would leave the
