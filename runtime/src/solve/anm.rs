@@ -130,11 +130,13 @@ impl Default for AnmOptions {
     }
 }
 
-/// The ranges the extensions of a step's series offered ([`AnmRun::approximant`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+/// The ranges the extensions of a step's series offered, and the distance of the singularity
+/// behind its start the series showed ([`AnmRun::approximant`]).
+#[derive(Clone, Copy, Debug)]
 struct Offered {
     pade: Option<f64>,
     map: Option<f64>,
+    behind: Option<f64>,
 }
 
 /// Per-step diagnostics kept by the solver.
@@ -720,7 +722,7 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
             series_step_length: series_range,
             pade_step_length: offered.pade,
             mapped_step_length: offered.map,
-            singularity_behind: singularity_behind(&series),
+            singularity_behind: offered.behind,
             end_residual: end.residual,
             correction_iterations: end.corrections,
             crossings_redone,
@@ -837,9 +839,10 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
             // point. Near a nearly perfect bifurcation the singular part of the series is too
             // small for the step-length criteria, and a step can run along the fundamental
             // branch past λ_c onto the unstable branch of the imperfect problem (the strip of
-            // example 2 with a 1e-5 imperfection ended at λ = 36 instead of 24.6 mm). A Padé
-            // step is redone once with a shorter Padé range, then with the series' own range; a
-            // series step with half its length.
+            // example 2 with a 1e-5 imperfection ended at λ = 36 instead of 24.6 mm). A step
+            // lengthened by an extension (Padé or the exponential map) is redone once with a
+            // shorter range of it, then with the series' own range; a series step with half its
+            // length.
             if approximant.extension_at(end.step_length).is_some() {
                 // A Padé end far along a nearly linear pre-buckling path passes the residual
                 // check past λ_c (the strip's plate: from λ = 0.03 mm to beyond 13.8 mm); the
@@ -1235,11 +1238,9 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
                 let range = p.pade_step_length(tolerance);
                 (p, range)
             });
-        let map = self
-            .options
-            .exponential_map
-            .then(|| singularity_behind(series))
-            .flatten()
+        let behind = singularity_behind(series);
+        let map = behind
+            .filter(|_| self.options.exponential_map)
             .and_then(|radius| ExponentialMap::new(series, radius).ok())
             .map(|map| {
                 let range = map.step_length(tolerance);
@@ -1248,6 +1249,7 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
         let offered = Offered {
             pade: pade.as_ref().map(|&(_, range)| range),
             map: map.as_ref().map(|&(_, range)| range),
+            behind,
         };
         let pade = pade.map(|(pade, range)| {
             let unbounded = !range.is_finite() && plain.is_finite();
