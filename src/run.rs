@@ -794,6 +794,12 @@ fn follow_options<M: EnergyModel>(
             bifurcation_mode_guess: threshold.buckling.modes.first().cloned(),
             // ... and its load is the guess the prediction is shifted towards.
             bifurcation_load_guess: Some(critical_load).filter(|l| l.is_finite()),
+            // ... and its amplitude the steps' parameter where the path moves along it.
+            mode_parameter: scene
+                .solver
+                .mode_parameter
+                .then(|| threshold.buckling.modes.first().cloned())
+                .flatten(),
             ..anm_options(scene, max_load)
         }),
         PathMethod::Riks => FollowMethod::Riks(riks),

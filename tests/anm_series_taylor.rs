@@ -12,6 +12,11 @@
 //!    the solves).
 //! 2. The series of an ANM step satisfies $`R(U(a),\lambda(a)) = O(a^{N+1})`$: halving $`a`$
 //!    divides the residual by $`\approx 2^{N+1}`$ (N = 5: 64).
+//! 4. A step's series in the amplitude of a mode $`\varphi`$ is the same branch as in the pseudo
+//!    arc length: its coefficients meet the parametrisation
+//!    ($`\langle U_1,\varphi\rangle = \pm\langle\varphi,\varphi\rangle`$, $`\langle U_k,\varphi\rangle = 0`$),
+//!    its residual falls as $`a^{N+1}`$, and at equal mode amplitude the two series give the
+//!    same load and displacements.
 
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
@@ -21,8 +26,10 @@ use wrinkle_models::ReferenceEnvelope;
 use wrinkle_runtime::EnergyModel;
 use wrinkle_runtime::linear::factor::SparseFactorization;
 use wrinkle_runtime::problem::{Problem, norm};
-use wrinkle_runtime::series::Series;
-use wrinkle_runtime::solve::anm::{compute_series, compute_series_generic};
+use wrinkle_runtime::series::{Series, series_step_length};
+use wrinkle_runtime::solve::anm::{
+    StepOrientation, compute_series, compute_series_generic, compute_series_in_mode,
+};
 use wrinkle_runtime::solve::newton::{NewtonOptions, newton};
 use wrinkle_runtime::solve::path::PathState;
 
@@ -242,4 +249,104 @@ fn taylor_mode_right_hand_sides_equal_the_generic_series_path() {
     }
     eprintln!("worst relative difference of step coefficients: {worst_series:e}");
     assert!(worst_series < 1e-9, "step series differ: {worst_series:e}");
+}
+
+#[test]
+fn series_in_a_mode_amplitude_is_the_arc_length_branch_reparametrised() {
+    let problem = problem(1e-3);
+    let (state, factor) = wrinkled_state(&problem);
+    let n = problem.free_count();
+    let order = 20;
+    let mut tape = problem.assembler.taylor_tape(order);
+    let (arc, u_hat) = compute_series(&problem, &state, &factor, order, None, &mut tape).unwrap();
+    // A mode with a part along the load tangent and a part across it.
+    let mut rng = StdRng::seed_from_u64(7);
+    let scale = norm(&u_hat) / (n as f64).sqrt();
+    let mode: Vec<f64> = u_hat
+        .iter()
+        .map(|u| u + 0.5 * scale * rng.random_range(-1.0..1.0))
+        .collect();
+    let orientation = StepOrientation {
+        previous_direction: None,
+        mode: Some(&mode),
+    };
+    let (by_mode, _, used) =
+        compute_series_in_mode(&problem, &state, &factor, order, orientation, &mut tape).unwrap();
+    assert!(used, "the load tangent has a part along the mode");
+    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    let mode_norm2 = dot(&mode, &mode);
+    // 1. The parametrisation: a is the change of the mode's amplitude.
+    let u = &by_mode.displacement;
+    assert!(
+        (dot(&u[1], &mode).abs() - mode_norm2).abs() <= 1e-10 * mode_norm2,
+        "<U_1, φ> = {}, |φ|² = {mode_norm2}",
+        dot(&u[1], &mode)
+    );
+    for (k, u_k) in u.iter().enumerate().skip(2) {
+        let projection = dot(u_k, &mode) / (norm(u_k) * mode_norm2.sqrt());
+        assert!(
+            projection.abs() <= 1e-10,
+            "order {k}: cosine {projection:e}"
+        );
+    }
+    // 2. The residual falls as a^(N+1) within the series' range.
+    let residual_at = |a: f64| {
+        let (u, l) = by_mode.evaluate(a);
+        norm(&problem.residual(&u, l))
+    };
+    let mut a = series_step_length(&by_mode, 1e-7).min(1.0);
+    while residual_at(a) > 1e-8 * problem.residual_scale(state.load) {
+        a *= 0.5;
+    }
+    assert!(residual_at(a) > 0.0 && residual_at(a).is_finite());
+    // 3. The same branch: at the arc-length parameter b of equal mode amplitude (bisection on
+    // the arc series, whose amplitude is monotone there) the two series agree.
+    let amplitude = |b: f64| {
+        let (u, _) = arc.evaluate(b);
+        let change: Vec<f64> = u
+            .iter()
+            .zip(&state.displacement)
+            .map(|(x, y)| x - y)
+            .collect();
+        dot(&change, &mode) / mode_norm2
+    };
+    let sign = dot(&u[1], &mode).signum() * dot(&arc.displacement[1], &mode).signum();
+    let target = sign * a;
+    let range = series_step_length(&arc, 1e-7);
+    let (mut low, mut high) = if target > 0.0 {
+        (0.0, range)
+    } else {
+        (-range, 0.0)
+    };
+    assert!(
+        (amplitude(low) - target) * (amplitude(high) - target) <= 0.0,
+        "amplitude {target:e} outside the arc series' range {range:e}"
+    );
+    for _ in 0..200 {
+        let mid = 0.5 * (low + high);
+        if (amplitude(low) - target) * (amplitude(mid) - target) <= 0.0 {
+            high = mid;
+        } else {
+            low = mid;
+        }
+    }
+    let b = 0.5 * (low + high);
+    let (u_mode, load_mode) = by_mode.evaluate(a);
+    let (u_arc, load_arc) = arc.evaluate(b);
+    assert!(
+        (load_mode - load_arc).abs() <= 1e-9 * state.load,
+        "λ in the mode's amplitude {load_mode}, in the arc length {load_arc}"
+    );
+    let difference: Vec<f64> = u_mode.iter().zip(&u_arc).map(|(x, y)| x - y).collect();
+    let moved: Vec<f64> = u_arc
+        .iter()
+        .zip(&state.displacement)
+        .map(|(x, y)| x - y)
+        .collect();
+    assert!(
+        norm(&difference) <= 1e-7 * norm(&moved),
+        "displacements differ by {:e} of the step's {:e}",
+        norm(&difference),
+        norm(&moved)
+    );
 }

@@ -515,35 +515,11 @@ fn loads_at_the_comparison_amplitudes_do_not_depend_on_the_steps() {
 /// exponential map ($`s = \ln(1 + a/R)`$, `solver.exponential_map`) removes that singularity.
 /// At 16 × 8 the path to a/h = 4 takes 8 steps with it against 11 without; at least one step
 /// ends on the map's range, and the loads at a/h = 0.5, 1, 2 are those of the path without it
-/// (measured 7e-10, 2.8e-7, 6.1e-7 relative).
+/// (measured 7e-10, 2.8e-7, 6.1e-7 relative). Both paths in the pseudo arc length
+/// (`solver.mode_parameter = false`: the mode's amplitude is the next test's).
 #[test]
 fn plate_knee_steps_past_a_singularity_behind_are_mapped_and_fewer() {
-    let runs: Vec<(RunSummary, Vec<f64>)> = ["true", "false"]
-        .iter()
-        .map(|map| {
-            let setting = format!("solver.exponential_map={map}");
-            let settings = [
-                "model.name=fvk-plate",
-                "mesh.nx=16",
-                "mesh.ny=8",
-                setting.as_str(),
-                "output.plots=false",
-                "output.vtu=false",
-                "output.surface=false",
-            ];
-            let dir = output_directory(&format!("map-{map}"));
-            let report = run(&scene(&settings), &dir, true).unwrap();
-            let _ = std::fs::remove_dir_all(&dir);
-            let path = path_of(&report.summary);
-            assert!(path.iter().all(|p| p.residual <= 1e-6), "map {map}");
-            assert!(path.last().unwrap().max_amplitude_over_h >= 4.0 - 1e-9);
-            let loads = AMPLITUDE_LEVELS
-                .iter()
-                .map(|&level| load_at_amplitude(&path, level).unwrap())
-                .collect();
-            (report.summary, loads)
-        })
-        .collect();
+    let runs = plate_16_by_8_paths("solver.exponential_map", &["solver.mode_parameter=false"]);
     let ((mapped, mapped_loads), (plain, plain_loads)) = (&runs[0], &runs[1]);
     let on_map = mapped
         .anm_steps
@@ -571,4 +547,77 @@ fn plate_knee_steps_past_a_singularity_behind_are_mapped_and_fewer() {
             "load at a/h = {level}: {with} with the map, {without} without"
         );
     }
+}
+
+/// Through the knee of an imperfect path the load is a simple function of the buckling mode's
+/// amplitude $`\xi`$ — for one mode $`\lambda/\lambda_c = (\xi + c\xi^3)/(\xi + \varepsilon)`$,
+/// one pole behind the step — where the pseudo arc length turns with the path.
+/// `solver.mode_parameter` expands the steps whose load tangent has a part along the mode in
+/// its amplitude. On example 1's plate at 16 × 8 the path to a/h = 4 takes fewer steps that
+/// way; every step past the unloaded start is parametrised by the mode; the path is the same
+/// path: every point within the residual tolerance and the loads at a/h = 0.5, 1, 2 within
+/// 2e-6 of the arc-length path's (the two are independent expansions of one branch).
+#[test]
+fn plate_knee_in_the_mode_amplitude_is_the_same_path_in_fewer_steps() {
+    let runs = plate_16_by_8_paths("solver.mode_parameter", &[]);
+    let ((by_mode, mode_loads), (by_arc, arc_loads)) = (&runs[0], &runs[1]);
+    assert!(
+        by_arc.anm_steps.iter().all(|s| !s.mode_parameter),
+        "the mode parameter was off"
+    );
+    assert!(
+        by_mode.anm_steps.iter().skip(1).all(|s| s.mode_parameter),
+        "steps past the start not in the mode's amplitude: {:?}",
+        by_mode
+            .anm_steps
+            .iter()
+            .map(|s| s.mode_parameter)
+            .collect::<Vec<_>>()
+    );
+    assert!(
+        by_mode.steps < by_arc.steps,
+        "{} steps in the mode's amplitude, {} in the arc length",
+        by_mode.steps,
+        by_arc.steps
+    );
+    for (k, level) in AMPLITUDE_LEVELS.iter().enumerate() {
+        let (mode, arc) = (mode_loads[k], arc_loads[k]);
+        assert!(
+            (mode - arc).abs() <= 2e-6 * arc,
+            "load at a/h = {level}: {mode} in the mode's amplitude, {arc} in the arc length"
+        );
+    }
+}
+
+/// Example 1's plate at 16 × 8 to a/h = 4 with the flag `key` true, then false (and `extra`
+/// settings): each run's summary and its loads at [`AMPLITUDE_LEVELS`], after checking that
+/// every point is within the residual tolerance and the path reached its target.
+fn plate_16_by_8_paths(key: &str, extra: &[&str]) -> Vec<(RunSummary, Vec<f64>)> {
+    ["true", "false"]
+        .iter()
+        .map(|flag| {
+            let setting = format!("{key}={flag}");
+            let mut settings = vec![
+                "model.name=fvk-plate",
+                "mesh.nx=16",
+                "mesh.ny=8",
+                setting.as_str(),
+                "output.plots=false",
+                "output.vtu=false",
+                "output.surface=false",
+            ];
+            settings.extend_from_slice(extra);
+            let dir = output_directory(&format!("{key}-{flag}"));
+            let report = run(&scene(&settings), &dir, true).unwrap();
+            let _ = std::fs::remove_dir_all(&dir);
+            let path = path_of(&report.summary);
+            assert!(path.iter().all(|p| p.residual <= 1e-6), "{setting}");
+            assert!(path.last().unwrap().max_amplitude_over_h >= 4.0 - 1e-9);
+            let loads = AMPLITUDE_LEVELS
+                .iter()
+                .map(|&level| load_at_amplitude(&path, level).unwrap())
+                .collect();
+            (report.summary, loads)
+        })
+        .collect()
 }

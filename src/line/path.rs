@@ -145,7 +145,7 @@ pub fn follow_line<M: EnergyModel>(
         displacement: start.solution,
         load: 0.0,
     };
-    let options = follow_options(scene, threshold.critical_load);
+    let options = follow_options(scene, threshold.critical_load, &buckling.modes[0]);
     let followed = follow_path(&problem, start, &mut factor, &options, &mut recorder);
     let result = followed.result;
     let reached_amplitude = recorder
@@ -179,7 +179,9 @@ pub fn follow_line<M: EnergyModel>(
     })
 }
 
-fn follow_options(scene: &Scene, critical_load: f64) -> FollowOptions {
+/// The path's settings; `mode` (the first buckling mode, which shapes the imperfection) is the
+/// ANM's step parameter where the path moves along it (`solver.mode_parameter`).
+fn follow_options(scene: &Scene, critical_load: f64, mode: &[f64]) -> FollowOptions {
     let max_load = (scene.solver.max_load > 0.0).then_some(scene.solver.max_load);
     let riks = RiksOptions {
         tolerance: scene.solver.tolerance,
@@ -194,6 +196,7 @@ fn follow_options(scene: &Scene, critical_load: f64) -> FollowOptions {
     let method = match scene.solver.method {
         PathMethod::Anm => FollowMethod::Anm(AnmOptions {
             predict_bifurcation: false,
+            mode_parameter: scene.solver.mode_parameter.then(|| mode.to_vec()),
             ..crate::run::anm_options(scene, max_load)
         }),
         PathMethod::Riks => FollowMethod::Riks(riks),

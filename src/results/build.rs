@@ -180,6 +180,7 @@ fn anm_step_record(step: &AnmStep) -> AnmStepRecord {
         predicted_bifurcation: step.predicted_bifurcation,
         negative_pivots: step.negative_pivots,
         completed: step.completed,
+        mode_parameter: step.mode_parameter,
     }
 }
 

@@ -198,6 +198,9 @@ pub struct AnmStepRecord {
     pub negative_pivots: Option<usize>,
     /// `false` for a last step the stop criterion ended inside.
     pub completed: bool,
+    /// The step's parameter (and lengths) is the buckling mode's amplitude, not the pseudo
+    /// arc length.
+    pub mode_parameter: bool,
 }
 
 /// A VTU file written, with its load.

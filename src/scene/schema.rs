@@ -271,6 +271,16 @@ scene_schema! {
         /// and one that misses it, or crosses a critical point, is shortened like a Padé end.
         /// `false`: series and Padé only (docs/benchmarks.md, "Round ten")
         exponential_map => exponential_map: bool = true, Flag, Unit::NONE;
+        /// parametrise an ANM step by the change of the buckling mode's amplitude,
+        /// $`a = \langle U - U_0, \varphi\rangle/\langle\varphi,\varphi\rangle`$ ($`\varphi`$ the
+        /// threshold's first mode, which shapes the imperfection), where the step starts
+        /// stable (no negative pivot) and its load tangent has a part along the mode (cosine
+        /// at least $`10^{-3}`$); elsewhere, and when `false`, by the pseudo arc length. Through the knee of an imperfect path the load is
+        /// a simple function of the mode's amplitude, with one singularity behind the step
+        /// (which `exponential_map` removes), where the arc length turns with the path and
+        /// adds singularities of its own: fewer steps (docs/benchmarks.md, "Round eleven").
+        /// The step lengths of `summary.json`'s `anm_steps` are in the step's own parameter
+        mode_parameter => mode_parameter: bool = true, Flag, Unit::NONE;
         /// `"anm"` (Asymptotic Numerical Method) or `"riks"` (Newton–Riks arc-length baseline:
         /// spherical constraint, a dimensionless arc length in units of the linear response to
         /// $`\lambda_c`$ and of $`\lambda_c`$, at most 0.3 and adapted to the Newton iterations;
@@ -278,7 +288,7 @@ scene_schema! {
         /// rising, jumped over the bifurcation and is halved, up to 12 times; a step changes
         /// the deflection (envelope) fields by at most $`h/4`$, so that the knee is resolved
         /// where the in-plane displacements dominate the arc length; `order`,
-        /// `series_tolerance`, `pade` and `exponential_map` unused)
+        /// `series_tolerance`, `pade`, `exponential_map` and `mode_parameter` unused)
         method => method: PathMethod = PathMethod::Anm, one_of::<PathMethod>(), Unit::NONE;
     }
 

@@ -22,6 +22,19 @@
 //!
 //! Each step is oriented with the path tangent at the end of the previous one.
 //!
+//! **The mode as path parameter** ([`AnmOptions::mode_parameter`]). Given the buckling mode
+//! $`\varphi`$ the imperfection selects, a step from a stable start (no negative pivot) whose
+//! load tangent has a part along it
+//! ($`|\langle\hat U,\varphi\rangle| \ge`$ [`MODE_PARAMETER_COSINE`]$`\,\|\hat U\|\|\varphi\|`$)
+//! is expanded in the change of the mode's amplitude instead,
+//! $`a = \langle U - U_0, \varphi\rangle/\langle\varphi,\varphi\rangle`$: order 1 then has
+//! $`\lambda_1 = \langle\varphi,\varphi\rangle/\langle\hat U,\varphi\rangle`$, order $`n\ge2`$
+//! $`\lambda_n = -\langle\hat U_n,\varphi\rangle/\langle\hat U,\varphi\rangle`$ (the same one solve
+//! an order). Through the knee of an imperfect path $`\lambda(\xi)`$ is nearly
+//! $`\lambda_c(\xi + c\xi^3)/(\xi + \varepsilon)`$ in the amplitude $`\xi`$, whose only nearby
+//! singularity, the pole at $`\xi = -\varepsilon`$ behind the step, is what the exponential map
+//! removes; in the pseudo arc length the turn of the path adds branch points of its own.
+//!
 //! **Crossing guard.** The tangent at each step's end is factorised (it is the next step's
 //! tangent, so this costs nothing when the end is kept). When it has more negative pivots than
 //! the start's, the step crossed a critical point: near a nearly perfect bifurcation a step can
@@ -105,6 +118,50 @@ pub struct AnmOptions {
     /// Cap on the path parameter of one step; when the series is exactly polynomial (no
     /// finite range) the step uses this value, or 1 if it is infinite.
     pub max_step_length: f64,
+    /// The mode $`\varphi`$ (free unknowns) whose amplitude parametrises the steps whose load
+    /// tangent has a part along it (see the [module](self)); `None`: every step in the pseudo
+    /// arc length. `wrinkle run` gives the buckling mode that shapes the imperfection.
+    pub mode_parameter: Option<Vec<f64>>,
+}
+
+/// A step is parametrised by the mode's amplitude ([`AnmOptions::mode_parameter`]) when the
+/// cosine between its load tangent $`\hat U`$ and the mode is at least this; else by the
+/// pseudo arc length. Below it the mode's amplitude hardly moves along the path (the sheet's
+/// in-plane response to the load dominates, or the path turns in the mode's amplitude) and
+/// would be a poor parameter.
+pub const MODE_PARAMETER_COSINE: f64 = 1e-3;
+
+/// How a step's series is oriented and parametrised.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct StepOrientation<'a> {
+    /// The path tangent $`(dU/da, d\lambda/da)`$ at the end of the previous step, which the step
+    /// continues (else $`\lambda_1 > 0`$ in the arc length).
+    pub previous_direction: Option<(&'a [f64], f64)>,
+    /// The mode whose amplitude is the step's parameter where the load tangent has a part
+    /// along it ([`AnmOptions::mode_parameter`]); `None`: the pseudo arc length.
+    pub mode: Option<&'a [f64]>,
+}
+
+/// One step's series ([`AnmRun::series`]).
+struct StepSeries {
+    series: PathSeries,
+    /// $`\hat U = K_t^{-1}F`$.
+    u_hat: Vec<f64>,
+    /// The series' coefficients orthogonalised for Padé, when on.
+    orthogonalized: Option<GramSchmidt>,
+    /// Parametrised by the mode's amplitude ([`StepParameter::Mode`]).
+    by_mode: bool,
+}
+
+/// How one step's path parameter $`a`$ is defined.
+#[derive(Clone, Copy, Debug)]
+enum StepParameter<'p> {
+    /// $`a = \langle U - U_0, U_1\rangle + (\lambda-\lambda_0)\lambda_1`$ with
+    /// $`\|U_1\|^2 + \lambda_1^2 = 1`$.
+    ArcLength,
+    /// $`a = \langle U - U_0, \varphi\rangle/\langle\varphi,\varphi\rangle`$, with
+    /// $`\langle\hat U,\varphi\rangle`$.
+    Mode { mode: &'p [f64], projection: f64 },
 }
 
 impl Default for AnmOptions {
@@ -126,6 +183,7 @@ impl Default for AnmOptions {
             bifurcation_mode_guess: None,
             bifurcation_load_guess: None,
             max_step_length: f64::INFINITY,
+            mode_parameter: None,
         }
     }
 }
@@ -182,39 +240,62 @@ pub struct AnmStep {
     /// `false` for a last step the stop criterion ended at one of its interior points: its
     /// `load_range` ends there, and `steps` of the path statistics counts it.
     pub completed: bool,
+    /// The step's path parameter (and its lengths above) is the mode's amplitude
+    /// ([`AnmOptions::mode_parameter`]); `false`: the pseudo arc length.
+    pub mode_parameter: bool,
 }
 
-/// Order 1 of a step: $`\hat U = K_t^{-1}F`$, $`\lambda_1 = \pm(1+\|\hat U\|^2)^{-1/2}`$, the sign
-/// chosen so that $`(U_1, \lambda_1)`$ continues `previous_direction` (the path tangent at the
-/// end of the previous step), else $`\lambda_1 > 0`$. Returns $`(\hat U, \lambda_1)`$.
-fn first_order<M: EnergyModel>(
+/// Order 1 of a step: $`\hat U = K_t^{-1}F`$, and $`\lambda_1 = \pm(1+\|\hat U\|^2)^{-1/2}`$ in
+/// the pseudo arc length, or $`\pm\langle\varphi,\varphi\rangle/\langle\hat U,\varphi\rangle`$ in
+/// the amplitude of `mode` when $`\hat U`$ has a part along it ([`MODE_PARAMETER_COSINE`]); the
+/// sign chosen so that $`(U_1, \lambda_1) = \lambda_1(\hat U, 1)`$ continues
+/// `previous_direction` (the path tangent at the end of the previous step), else as computed.
+/// Returns $`(\hat U, \lambda_1)`$ and the step's parameter.
+fn first_order<'p, M: EnergyModel>(
     problem: &Problem<M>,
     state: &PathState,
     factor: &SparseFactorization,
     previous_direction: Option<(&[f64], f64)>,
-) -> Result<(Vec<f64>, f64), SolveError> {
+    mode: Option<&'p [f64]>,
+) -> Result<(Vec<f64>, f64, StepParameter<'p>), SolveError> {
     let u_hat = load_tangent(problem, factor, &state.displacement, state.load).map_err(
         SolveError::linear(format!("ANM order 1 at load {:.6e}", state.load)),
     )?;
     let norm2 = dot(&u_hat, &u_hat);
     let mut lambda1 = 1.0 / (1.0 + norm2).sqrt();
+    let mut parameter = StepParameter::ArcLength;
+    if let Some(mode) = mode {
+        let projection = dot(&u_hat, mode);
+        let mode_norm2 = dot(mode, mode);
+        if projection.abs() >= MODE_PARAMETER_COSINE * (norm2 * mode_norm2).sqrt()
+            && projection.is_finite()
+            && mode_norm2 > 0.0
+        {
+            lambda1 = mode_norm2 / projection;
+            parameter = StepParameter::Mode { mode, projection };
+        }
+    }
     if let Some((u_prev, l_prev)) = previous_direction
-        && dot(&u_hat, u_prev) + l_prev < 0.0
+        && lambda1 * (dot(&u_hat, u_prev) + l_prev) < 0.0
     {
         lambda1 = -lambda1;
     }
-    Ok((u_hat, lambda1))
+    Ok((u_hat, lambda1, parameter))
 }
 
 /// Order $`k \ge 2`$ from its right-hand side $`F^{nl}_k`$ (overwritten): solve
-/// $`K_t\hat U_k = F^{nl}_k`$, then $`\lambda_k = -\lambda_1\langle\hat U_k, U_1\rangle`$,
+/// $`K_t\hat U_k = F^{nl}_k`$, then $`\lambda_k = -\lambda_1\langle\hat U_k, U_1\rangle`$ in the
+/// pseudo arc length, $`\lambda_k = -\langle\hat U_k,\varphi\rangle/\langle\hat U,\varphi\rangle`$
+/// in the mode's amplitude ($`\langle U_k, \varphi\rangle = 0`$), and
 /// $`U_k = \hat U_k + \lambda_k\hat U`$.
+#[allow(clippy::too_many_arguments)]
 fn higher_order(
     factor: &SparseFactorization,
     mut rhs: Vec<f64>,
     u_hat: &[f64],
     u1: &[f64],
     lambda1: f64,
+    parameter: StepParameter<'_>,
     k: usize,
     load: f64,
 ) -> Result<(Vec<f64>, f64), SolveError> {
@@ -228,7 +309,10 @@ fn higher_order(
         .map_err(SolveError::linear(format!(
             "ANM order {k} at load {load:.6e}"
         )))?;
-    let lambda_k = -lambda1 * dot(&rhs, u1);
+    let lambda_k = match parameter {
+        StepParameter::ArcLength => -lambda1 * dot(&rhs, u1),
+        StepParameter::Mode { mode, projection } => -dot(&rhs, mode) / projection,
+    };
     axpy(lambda_k, u_hat, &mut rhs);
     Ok((rhs, lambda_k))
 }
@@ -247,16 +331,34 @@ pub fn compute_series<M: EnergyModel>(
     previous_direction: Option<(&[f64], f64)>,
     tape: &mut TaylorTape,
 ) -> Result<(PathSeries, Vec<f64>), SolveError> {
-    start_tape(problem, state, tape);
-    series_with(
+    compute_series_in_mode(
         problem,
         state,
         factor,
         order,
-        previous_direction,
+        StepOrientation {
+            previous_direction,
+            mode: None,
+        },
         tape,
-        None,
     )
+    .map(|(series, u_hat, _)| (series, u_hat))
+}
+
+/// [`compute_series`] with the step parametrised by the amplitude of `mode` when given,
+/// $`a = \langle U - U_0, \varphi\rangle/\langle\varphi,\varphi\rangle`$, and the load tangent
+/// has a part along it ([`AnmOptions::mode_parameter`], [`MODE_PARAMETER_COSINE`]); the
+/// returned flag says whether it has (else the series is the arc length's).
+pub fn compute_series_in_mode<M: EnergyModel>(
+    problem: &Problem<M>,
+    state: &PathState,
+    factor: &SparseFactorization,
+    order: usize,
+    orientation: StepOrientation<'_>,
+    tape: &mut TaylorTape,
+) -> Result<(PathSeries, Vec<f64>, bool), SolveError> {
+    start_tape(problem, state, tape);
+    series_with(problem, state, factor, order, orientation, tape, None)
 }
 
 /// Starts the tape at `state` for a series there: order 0, then the order-1 prediction (zero:
@@ -271,18 +373,25 @@ fn start_tape<M: EnergyModel>(problem: &Problem<M>, state: &PathState, tape: &mu
 /// approximants ([`PadeApproximant::orthogonalized`]): each $`V_{k-1}`$ is orthogonalised while
 /// the order-$`k`$ solve runs, on the core the solve leaves idle (the approximant's
 /// construction took 0.06 of a step's floor on the reference envelope at 128 × 64, after the
-/// series). The tape must have been started at `state` ([`start_tape`]).
+/// series). The tape must have been started at `state` ([`start_tape`]). The step is oriented
+/// along `previous_direction` and parametrised by the amplitude of `mode` when given and the
+/// load tangent has a part along it ([`first_order`]); the returned flag says whether it is.
 fn series_with<M: EnergyModel>(
     problem: &Problem<M>,
     state: &PathState,
     factor: &SparseFactorization,
     order: usize,
-    previous_direction: Option<(&[f64], f64)>,
+    orientation: StepOrientation<'_>,
     tape: &mut TaylorTape,
     mut orthogonalized: Option<&mut GramSchmidt>,
-) -> Result<(PathSeries, Vec<f64>), SolveError> {
+) -> Result<(PathSeries, Vec<f64>, bool), SolveError> {
     let order = order.clamp(2, tape.highest_order());
-    let (u_hat, lambda1) = first_order(problem, state, factor, previous_direction)?;
+    let StepOrientation {
+        previous_direction,
+        mode,
+    } = orientation;
+    let (u_hat, lambda1, parameter) =
+        first_order(problem, state, factor, previous_direction, mode)?;
     let u1: Vec<f64> = u_hat.iter().map(|v| v * lambda1).collect();
     let mut displacement = vec![state.displacement.clone(), u1];
     let mut load = vec![state.load, lambda1];
@@ -301,6 +410,7 @@ fn series_with<M: EnergyModel>(
                     &u_hat,
                     &displacement[1],
                     lambda1,
+                    parameter,
                     k,
                     state.load,
                 )
@@ -322,7 +432,8 @@ fn series_with<M: EnergyModel>(
         load: state.load,
         message: format!("series: {e}"),
     })?;
-    Ok((series, u_hat))
+    let by_mode = matches!(parameter, StepParameter::Mode { .. });
+    Ok((series, u_hat, by_mode))
 }
 
 /// [`compute_series`] through the generic kernels on truncated [`Series`]: the residual of
@@ -337,7 +448,8 @@ pub fn compute_series_generic<M: EnergyModel>(
 ) -> Result<(PathSeries, Vec<f64>), SolveError> {
     let n = problem.free_count();
     let order = order.clamp(2, MAX_SERIES_LEN - 2);
-    let (u_hat, lambda1) = first_order(problem, state, factor, previous_direction)?;
+    let (u_hat, lambda1, parameter) =
+        first_order(problem, state, factor, previous_direction, None)?;
     let u1: Vec<f64> = u_hat.iter().map(|v| v * lambda1).collect();
     let mut displacement = vec![state.displacement.clone(), u1];
     let mut load = vec![state.load, lambda1];
@@ -360,6 +472,7 @@ pub fn compute_series_generic<M: EnergyModel>(
             &u_hat,
             &displacement[1],
             lambda1,
+            parameter,
             k,
             state.load,
         )?;
@@ -707,7 +820,12 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
         steps_log: &mut Vec<AnmStep>,
     ) -> Result<Option<PathStop>, SolveError> {
         self.factorize_tangent(step, steps_log)?;
-        let (series, u_hat, orthogonalized) = self.series()?;
+        let StepSeries {
+            series,
+            u_hat,
+            orthogonalized,
+            by_mode,
+        } = self.series()?;
         // One started at an earlier step has had this series beside it.
         self.collect_prediction(steps_log);
         let predicted = self.watch_bifurcation(step, &series, &u_hat, steps_log);
@@ -730,6 +848,7 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
             predicted_bifurcation: predicted,
             negative_pivots: self.negative_pivots,
             completed: true,
+            mode_parameter: by_mode,
         };
         let last_reported = match self.dense_output(
             step,
@@ -786,7 +905,20 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
 
     /// The series of the step at the current point ([`compute_series`]; with its Gram–Schmidt
     /// when Padé approximants are enabled), timed and counted.
-    fn series(&mut self) -> Result<(PathSeries, Vec<f64>, Option<GramSchmidt>), SolveError> {
+    /// The mode whose amplitude parametrises this step ([`AnmOptions::mode_parameter`]): only
+    /// from a stable start (no negative pivot). On an unstable branch — past a limit point of
+    /// a subcritical path, or a crossing taken as the path's own — the crossing guard no longer
+    /// keeps a step from jumping over a bifurcation, and a step in the mode's amplitude did:
+    /// the softening beam of `beam_softening.toml`, localised at its middle in the arc length,
+    /// ended localised off the middle (an asymmetric branch). There the arc length stays.
+    fn mode_parameter(&self) -> Option<&'a [f64]> {
+        self.options
+            .mode_parameter
+            .as_deref()
+            .filter(|_| self.negative_pivots == Some(0))
+    }
+
+    fn series(&mut self) -> Result<StepSeries, SolveError> {
         let t = Instant::now();
         let solves_before = self.linearization.factor().solve_seconds();
         let direction = self
@@ -801,12 +933,15 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
         if !tape_started {
             start_tape(self.linearization.problem(), &self.state, &mut self.tape);
         }
-        let (series, u_hat) = series_with(
+        let (series, u_hat, by_mode) = series_with(
             self.linearization.problem(),
             &self.state,
             self.linearization.factor(),
             self.options.order,
-            direction,
+            StepOrientation {
+                previous_direction: direction,
+                mode: self.mode_parameter(),
+            },
             &mut self.tape,
             orthogonalized.as_mut(),
         )?;
@@ -815,7 +950,12 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
         statistics.series_assemblies += series.order() - 1;
         statistics.series_seconds += t.elapsed().as_secs_f64();
         statistics.series_solve_seconds += solve_seconds;
-        Ok((series, u_hat, orthogonalized))
+        Ok(StepSeries {
+            series,
+            u_hat,
+            orthogonalized,
+            by_mode,
+        })
     }
 
     /// The step's end ([`Self::accept_end`]), redone while it jumped over a critical point
