@@ -304,7 +304,8 @@ pub fn buckle(scene: &Scene, quiet: bool) -> Result<Threshold, Error> {
 
 /// Notes for keys the scene gives that it does not use: `load.tension_y` under the strip load
 /// (example 2 has no tension); the ANM's settings (`solver.order`, `solver.series_tolerance`,
-/// `solver.pade`, `solver.exponential_map`, `solver.mode_parameter`) under Riks, which has no series.
+/// `solver.pade`, `solver.exponential_map`, `solver.mode_parameter`) under Riks, which has no
+/// series.
 fn unused_keys_notes(scene: &Scene) -> Vec<String> {
     let mut notes = Vec::new();
     if scene.solver.method == PathMethod::Riks {

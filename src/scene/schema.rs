@@ -275,8 +275,9 @@ scene_schema! {
         /// $`a = \langle U - U_0, \varphi\rangle/\langle\varphi,\varphi\rangle`$ ($`\varphi`$ the
         /// threshold's first mode, which shapes the imperfection), where the step starts
         /// stable (no negative pivot) and its load tangent has a part along the mode (cosine
-        /// at least $`10^{-3}`$); elsewhere, and when `false`, by the pseudo arc length. Through the knee of an imperfect path the load is
-        /// a simple function of the mode's amplitude, with one singularity behind the step
+        /// at least $`10^{-3}`$); elsewhere, and when `false`, by the pseudo arc length.
+        /// Through the knee of an imperfect path the load is a simple function of the mode's
+        /// amplitude, with one singularity behind the step
         /// (which `exponential_map` removes), where the arc length turns with the path and
         /// adds singularities of its own: fewer steps (docs/benchmarks.md, "Round eleven").
         /// The step lengths of `summary.json`'s `anm_steps` are in the step's own parameter

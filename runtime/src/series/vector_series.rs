@@ -22,7 +22,9 @@ pub const GEOMETRIC_RATIO_TOLERANCE: f64 = 0.1;
 /// ```
 /// where the path parameter satisfies $`\langle U_k, U_1\rangle + \lambda_k \lambda_1 = 0`$ for
 /// $`k \ge 2`$ (THEORY.md §10), or, in the amplitude of a mode $`\varphi`$,
-/// $`\langle U_k, \varphi\rangle = 0`$ ([`AnmOptions::mode_parameter`](crate::solve::anm::AnmOptions)). Norms of coefficients include the load component:
+/// $`\langle U_k, \varphi\rangle = 0`$
+/// ([`AnmOptions::mode_parameter`](crate::solve::anm::AnmOptions)). Norms of coefficients
+/// include the load component:
 /// $`\lVert V_k \rVert = \big(\lVert U_k\rVert^2 + \lambda_k^2\big)^{1/2}`$ with
 /// $`V_k = (U_k, \lambda_k)`$.
 ///

@@ -903,8 +903,6 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
         Ok(end.hit_max_load.then_some(PathStop::MaxLoad))
     }
 
-    /// The series of the step at the current point ([`compute_series`]; with its Gram–Schmidt
-    /// when Padé approximants are enabled), timed and counted.
     /// The mode whose amplitude parametrises this step ([`AnmOptions::mode_parameter`]): only
     /// from a stable start (no negative pivot). On an unstable branch — past a limit point of
     /// a subcritical path, or a crossing taken as the path's own — the crossing guard no longer
@@ -918,6 +916,8 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
             .filter(|_| self.negative_pivots == Some(0))
     }
 
+    /// The series of the step at the current point ([`compute_series`]; with its Gram–Schmidt
+    /// when Padé approximants are enabled), timed and counted.
     fn series(&mut self) -> Result<StepSeries, SolveError> {
         let t = Instant::now();
         let solves_before = self.linearization.factor().solve_seconds();
