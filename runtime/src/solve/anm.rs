@@ -16,7 +16,7 @@
 //! Step length $`a_{\max} = (\epsilon\|U_1\|/\|U_N\|)^{1/(N-1)}`$ or, optionally, the Padé
 //! approximants' longer range, or that of the series re-expanded in $`s = \ln(1 + a/R)`$ when
 //! its last orders show a singularity behind the step at $`a = -R`$
-//! ([`ExponentialMap`](crate::series::ExponentialMap)). The residual is checked at the end of
+//! ([`ExponentialMap`]). The residual is checked at the end of
 //! every step; a Riks (arc-length) correction brings it back under the tolerance when needed
 //! (or the step is halved).
 //!
