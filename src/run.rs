@@ -33,9 +33,10 @@ use wrinkle_runtime::problem::Problem;
 use wrinkle_runtime::solve::anm::AnmOptions;
 use wrinkle_runtime::solve::ellipticity::{EllipticityReport, legendre_hadamard};
 use wrinkle_runtime::solve::follow::{
-    FollowMethod, FollowOptions, FollowedPath, PathObserver, follow_path,
+    FollowMethod, FollowOptions, FollowedPath, PathObserver, follow_path_in_workspace,
 };
 use wrinkle_runtime::solve::landing::parameter_on_step;
+use wrinkle_runtime::solve::linearization::Workspace;
 use wrinkle_runtime::solve::newton::{NewtonOptions, newton};
 use wrinkle_runtime::solve::path::{
     OnStep, PathControl, PathEvent, PathResult, PathState, PathStop,
@@ -101,6 +102,8 @@ impl ModelVisitor for RunVisitor<'_> {
         let mut problem = build_problem(scene, model)?;
         let mut factor = analyse(&problem)?;
         let threshold = find_threshold_with(scene, &mut problem, &mut factor, self.options)?;
+        // The path's buffers; the start's Newton assembles into them.
+        let workspace = Workspace::new(&problem, &factor).ok();
         let (imperfection, response) = add_imperfection(scene, &mut problem, &layout, &threshold)?;
         let _phase = crate::interrupt::PathPhase::enter();
         let trace = trace_path(
@@ -109,7 +112,7 @@ impl ModelVisitor for RunVisitor<'_> {
             &mut factor,
             &layout,
             &threshold,
-            response.as_deref(),
+            (response.as_deref(), workspace),
             quiet,
         )?;
         let context = RunContext {
@@ -563,13 +566,21 @@ impl<M: EnergyModel> PathRecorder<'_, '_, M> {
 /// Equilibrium at $`\lambda = 0`$ under the fixed loads (tension, imperfection), by Newton from
 /// the pre-buckling state plus the imperfection's linear `response` when known (then the
 /// residual left to correct is the imperfection's quadratic part: one iteration fewer).
+/// Newton assembles into the path's `workspace` when given, which then holds its last
+/// tangent, factorised in `factor` ([`Workspace::hold`]: the path's first step keeps that
+/// factorisation when the tangent at the start is the same).
 fn start_point<M: EnergyModel>(
     problem: &Problem<M>,
     factor: &mut SparseFactorization,
     threshold: &Threshold,
     response: Option<&[f64]>,
+    mut workspace: Option<&mut Workspace>,
 ) -> Result<PathState, Error> {
-    let mut matrix = problem.new_matrix();
+    let mut own = None;
+    let matrix = match workspace.as_deref_mut() {
+        Some(workspace) => workspace.tangent_mut(),
+        None => own.insert(problem.new_matrix()),
+    };
     let mut initial = threshold.buckling.state_at(threshold.reference_load, 0.0);
     if let Some(response) = response {
         for (u, r) in initial.iter_mut().zip(response) {
@@ -581,10 +592,15 @@ fn start_point<M: EnergyModel>(
         initial,
         0.0,
         factor,
-        &mut matrix,
+        matrix,
         &NewtonOptions::default(),
     )
     .map_err(|e| Error::Solver(format!("equilibrium at zero load: {e}")))?;
+    if solution.iterations > 0
+        && let Some(workspace) = workspace
+    {
+        workspace.hold();
+    }
     Ok(PathState {
         displacement: solution.solution,
         load: 0.0,
@@ -667,17 +683,18 @@ impl<'a, 's, M: EnergyModel> PathRecorder<'a, 's, M> {
     }
 }
 
-/// Equilibrium at $`\lambda = 0`$, then the path to the amplitude target.
+/// Equilibrium at $`\lambda = 0`$ (from the imperfection's linear `response` when known), then
+/// the path to the amplitude target, in `workspace` when given.
 fn trace_path<M: EnergyModel>(
     scene: &Scene,
     problem: &Problem<M>,
     factor: &mut SparseFactorization,
     layout: &Layout,
     threshold: &Threshold,
-    response: Option<&[f64]>,
+    (response, mut workspace): (Option<&[f64]>, Option<Workspace>),
     quiet: bool,
 ) -> Result<Trace, Error> {
-    let start = start_point(problem, factor, threshold, response)?;
+    let start = start_point(problem, factor, threshold, response, workspace.as_mut())?;
     // The ellipticity checks' own worker, when the path has two or more.
     let pool = (rayon::current_num_threads() >= 2)
         .then(|| {
@@ -697,20 +714,20 @@ fn trace_path<M: EnergyModel>(
             factor,
             layout,
             threshold,
-            start.clone(),
+            (start.clone(), workspace),
             recorder,
         )
     })
 }
 
-/// The path of [`trace_path`] from `start`, recorded by `recorder`.
+/// The path of [`trace_path`] from `start` in its workspace, recorded by `recorder`.
 fn follow_and_record<M: EnergyModel>(
     scene: &Scene,
     problem: &Problem<M>,
     factor: &mut SparseFactorization,
     layout: &Layout,
     threshold: &Threshold,
-    start: PathState,
+    start: (PathState, Option<Workspace>),
     mut recorder: PathRecorder<'_, '_, M>,
 ) -> Result<Trace, Error> {
     let max_load = (scene.solver.max_load > 0.0).then_some(scene.solver.max_load);
@@ -718,7 +735,7 @@ fn follow_and_record<M: EnergyModel>(
     let FollowedPath {
         mut result,
         anm_steps,
-    } = follow_path(problem, start, factor, &options, &mut recorder);
+    } = follow_path_in_workspace(problem, start, factor, &options, &mut recorder);
     // The wait for the last check is the path's, and its recording's.
     let clock = Instant::now();
     recorder.collect_ellipticity();
@@ -944,8 +961,9 @@ mod tests {
                 .guesses
                 .iter()
                 .map(|factor_of_critical| {
-                    let start = start_point(&problem, &mut factor, &threshold, response.as_deref())
-                        .unwrap();
+                    let response = response.as_deref();
+                    let start =
+                        start_point(&problem, &mut factor, &threshold, response, None).unwrap();
                     let options = AnmOptions {
                         max_steps: 6,
                         bifurcation_mode_guess: threshold.buckling.modes.first().cloned(),

@@ -23,7 +23,10 @@ use wrinkle_runtime::EnergyModel;
 use wrinkle_runtime::linear::SparseFactorization;
 use wrinkle_runtime::problem::Problem;
 use wrinkle_runtime::solve::anm::AnmOptions;
-use wrinkle_runtime::solve::follow::{FollowMethod, FollowOptions, PathObserver, follow_path};
+use wrinkle_runtime::solve::follow::{
+    FollowMethod, FollowOptions, PathObserver, follow_path_in_workspace,
+};
+use wrinkle_runtime::solve::linearization::Workspace;
 use wrinkle_runtime::solve::newton::{NewtonOptions, newton};
 use wrinkle_runtime::solve::path::{PathControl, PathEvent, PathState};
 use wrinkle_runtime::solve::riks::RiksOptions;
@@ -118,7 +121,14 @@ pub fn follow_line<M: EnergyModel>(
     );
     let mut factor = SparseFactorization::analyze(problem.assembler.pattern())
         .map_err(|e| Error::Solver(format!("analysing the tangent: {e}")))?;
-    let mut matrix = problem.new_matrix();
+    // Newton assembles into the path's own matrix: the first step keeps its factorisation
+    // when the tangent at the start is the same (`Workspace::hold`).
+    let mut workspace = Workspace::new(&problem, &factor).ok();
+    let mut own = None;
+    let matrix = match workspace.as_mut() {
+        Some(workspace) => workspace.tangent_mut(),
+        None => own.insert(problem.new_matrix()),
+    };
     let options = NewtonOptions {
         tolerance: scene.solver.tolerance,
         max_iterations: 20,
@@ -128,10 +138,15 @@ pub fn follow_line<M: EnergyModel>(
         vec![0.0; problem.free_count()],
         0.0,
         &mut factor,
-        &mut matrix,
+        matrix,
         &options,
     )
     .map_err(|e| Error::Solver(format!("the unloaded state: {e}")))?;
+    if start.iterations > 0
+        && let Some(workspace) = workspace.as_mut()
+    {
+        workspace.hold();
+    }
     let started = Instant::now();
     let mut recorder = Recorder {
         problem: &problem,
@@ -146,7 +161,8 @@ pub fn follow_line<M: EnergyModel>(
         load: 0.0,
     };
     let options = follow_options(scene, threshold.critical_load, &buckling.modes[0]);
-    let followed = follow_path(&problem, start, &mut factor, &options, &mut recorder);
+    let start = (start, workspace);
+    let followed = follow_path_in_workspace(&problem, start, &mut factor, &options, &mut recorder);
     let result = followed.result;
     let reached_amplitude = recorder
         .points

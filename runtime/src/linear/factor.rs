@@ -206,11 +206,16 @@ fn ordered_analysis(
     if choice != OrderingChoice::Cheaper {
         return symbolic_with(pattern, structure, params, choice);
     }
-    let amd = symbolic_with(pattern, structure, params, OrderingChoice::Amd)?;
     if pattern.dimension() < DISSECTION_FROM {
-        return Ok(amd);
+        return symbolic_with(pattern, structure, params, OrderingChoice::Amd);
     }
-    let dissection = symbolic_with(pattern, structure, params, OrderingChoice::NestedDissection)?;
+    // Two independent sequential analyses, one per core (each gives the same structure on any
+    // number of threads, and the choice between them is by their work alone).
+    let (amd, dissection) = rayon::join(
+        || symbolic_with(pattern, structure, params, OrderingChoice::Amd),
+        || symbolic_with(pattern, structure, params, OrderingChoice::NestedDissection),
+    );
+    let (amd, dissection) = (amd?, dissection?);
     Ok(
         if factorization_work(&dissection) < factorization_work(&amd) {
             dissection
@@ -336,6 +341,15 @@ impl SparseFactorization {
             solve_nanos: AtomicU64::new(0),
             split: self.split.clone(),
         })
+    }
+
+    /// Whether `other` shares this factorisation's symbolic analysis (made by
+    /// [`Self::same_analysis`] of it, or it of `other`): the same ordering and factor structure.
+    pub fn shares_analysis(&self, other: &Self) -> bool {
+        match (&self.symbolic, &other.symbolic) {
+            (Some(a), Some(b)) => std::sync::Arc::ptr_eq(a, b),
+            _ => false,
+        }
     }
 
     /// Estimated operations of one numeric factorisation ([`factorization_work`]; 0 before an

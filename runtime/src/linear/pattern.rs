@@ -104,12 +104,15 @@ impl SparsityPattern {
     }
 
     fn from_columns(n: usize, mut columns: Vec<Vec<usize>>) -> Self {
+        // Each column on its own (both cores: a third of building a 61 k-unknown pattern).
+        columns.par_iter_mut().for_each(|rows| {
+            rows.sort_unstable();
+            rows.dedup();
+        });
         let mut col_ptr = Vec::with_capacity(n + 1);
         col_ptr.push(0);
         let mut total = 0;
-        for rows in &mut columns {
-            rows.sort_unstable();
-            rows.dedup();
+        for rows in &columns {
             total += rows.len();
             col_ptr.push(total);
         }

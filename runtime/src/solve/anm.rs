@@ -57,7 +57,9 @@
 use super::arc_length::{ArcCorrectorOptions, ArcLengthConstraint, correct_on_arc};
 use super::error::SolveError;
 use super::landing::parameter_at_load;
-use super::linearization::{Linearization, SpareTangent, factorize_tangent, load_tangent};
+use super::linearization::{
+    Linearization, SpareTangent, Workspace, factorize_tangent, load_tangent,
+};
 use super::newton::NewtonOptions;
 use super::path::{OnStep, PathControl, PathEvent, PathResult, PathState, PathStop};
 use super::wavenumber::LOCAL_SHIFT;
@@ -652,14 +654,16 @@ pub fn follow_path_anm<M: EnergyModel>(
     observer: &mut dyn FnMut(&PathEvent) -> PathControl,
     steps_log: &mut Vec<AnmStep>,
 ) -> PathResult {
-    follow_path_anm_to_tail(problem, start, factor, options, observer, steps_log).0
+    let path = (start, None);
+    follow_path_anm_to_tail(problem, path, factor, options, observer, steps_log).0
 }
 
 /// [`follow_path_anm`], with the approximant of the step the observer stopped the path in, if
-/// it did ([`StepTail`]).
+/// it did ([`StepTail`]), from `start` in the [`Workspace`] made for it, if any (its spare
+/// serves only a `factor` of the same analysis, [`Workspace::fits`]).
 pub fn follow_path_anm_to_tail<M: EnergyModel>(
     problem: &Problem<M>,
-    start: PathState,
+    start: (PathState, Option<Workspace>),
     factor: &mut SparseFactorization,
     options: &AnmOptions,
     observer: &mut dyn FnMut(&PathEvent) -> PathControl,
@@ -675,16 +679,23 @@ pub fn follow_path_anm_to_tail<M: EnergyModel>(
 fn follow_path_in<'scope, 'a: 'scope, M: EnergyModel>(
     scope: &'scope std::thread::Scope<'scope, 'a>,
     problem: &'a Problem<M>,
-    start: PathState,
+    (start, workspace): (PathState, Option<Workspace>),
     factor: &'a mut SparseFactorization,
     options: &'a AnmOptions,
     observer: &mut dyn FnMut(&PathEvent) -> PathControl,
     steps_log: &mut Vec<AnmStep>,
 ) -> (PathResult, Option<StepTail>) {
+    let (matrix, end_check, start_held) = match workspace.filter(|w| w.fits(factor)) {
+        Some(workspace) => {
+            let (matrix, spare, held) = workspace.into_parts();
+            (matrix, Some(spare), held)
+        }
+        None => (problem.new_matrix(), None, false),
+    };
     let mut run = AnmRun {
         scope,
         pending: None,
-        linearization: Linearization::new(problem, factor),
+        linearization: Linearization::with_matrix(problem, factor, matrix),
         options,
         begin: Instant::now(),
         tape: problem
@@ -697,8 +708,9 @@ fn follow_path_in<'scope, 'a: 'scope, M: EnergyModel>(
         prediction: None,
         bifurcation: None,
         warnings: Vec::new(),
-        end_check: None,
+        end_check,
         start_factorized: false,
+        start_held,
         tape_started_at: None,
         tail: None,
     };
@@ -773,6 +785,10 @@ struct AnmRun<'scope, 'a: 'scope, M: EnergyModel> {
     /// The tangent at the current start is already assembled and factorised (by the end check
     /// of the previous step).
     start_factorized: bool,
+    /// The factorisation holds that of the current matrix, assembled before the path (the
+    /// start's Newton, [`Workspace::hold`]): the first step keeps it when the tangent at the
+    /// start is the same ([`Linearization::factorize_unless_held`]).
+    start_held: bool,
     /// The load of the step end the tape was last started at (beside that end's
     /// factorisation, [`Self::jumped_over_critical_point`]); the next series skips the start
     /// when it is the current start's.
@@ -1056,12 +1072,21 @@ impl<'scope, 'a: 'scope, M: EnergyModel> AnmRun<'scope, 'a, M> {
     ) -> Result<(), SolveError> {
         if !std::mem::take(&mut self.start_factorized) {
             let state = &self.state;
-            self.linearization
-                .factorize(&state.displacement, state.load)
-                .map_err(SolveError::linear(format!(
-                    "ANM step {step} at load {:.6e}: tangent factorisation",
-                    state.load
-                )))?;
+            let held = std::mem::take(&mut self.start_held);
+            let factorized = match self.end_check.as_mut() {
+                // The first step's factorisation may be the start's Newton's.
+                Some(spare) => self
+                    .linearization
+                    .factorize_unless_held(&state.displacement, state.load, held, spare)
+                    .map(|_| ()),
+                None => self
+                    .linearization
+                    .factorize(&state.displacement, state.load),
+            };
+            factorized.map_err(SolveError::linear(format!(
+                "ANM step {step} at load {:.6e}: tangent factorisation",
+                state.load
+            )))?;
         }
         let negative = self.linearization.negative_pivots();
         if let (Some(before), Some(now)) = (self.negative_pivots, negative)

@@ -21,7 +21,7 @@ use std::time::Instant;
 use super::anm::{AnmOptions, AnmStep, StepTail, follow_path_anm_to_tail};
 use super::arc_length::ArcCorrectorOptions;
 use super::landing::{LandingTarget, land, land_on_step};
-use super::linearization::Linearization;
+use super::linearization::{Linearization, Workspace};
 use super::path::{PathControl, PathEvent, PathResult, PathState, PathStop};
 use super::riks::{RiksOptions, follow_path_riks};
 use crate::linear::factor::SparseFactorization;
@@ -88,6 +88,20 @@ pub fn follow_path<M: EnergyModel>(
     options: &FollowOptions,
     observer: &mut dyn PathObserver,
 ) -> FollowedPath {
+    follow_path_in_workspace(problem, (start, None), factor, options, observer)
+}
+
+/// [`follow_path`] in the [`Workspace`] made for the path, when given: the ANM assembles and
+/// checks its step ends in its buffers, and keeps the factorisation it holds for the first
+/// step when the start's tangent is the one factorised there ([`Workspace::hold`]). Riks does
+/// not use it.
+pub fn follow_path_in_workspace<M: EnergyModel>(
+    problem: &Problem<M>,
+    (start, workspace): (PathState, Option<Workspace>),
+    factor: &mut SparseFactorization,
+    options: &FollowOptions,
+    observer: &mut dyn PathObserver,
+) -> FollowedPath {
     let mut recent = RecentPoints::default();
     let mut anm_steps = Vec::new();
     let (mut result, tail) = {
@@ -96,9 +110,14 @@ pub fn follow_path<M: EnergyModel>(
             observer.observe(event)
         };
         match &options.method {
-            FollowMethod::Anm(anm) => {
-                follow_path_anm_to_tail(problem, start, factor, anm, &mut watch, &mut anm_steps)
-            }
+            FollowMethod::Anm(anm) => follow_path_anm_to_tail(
+                problem,
+                (start, workspace),
+                factor,
+                anm,
+                &mut watch,
+                &mut anm_steps,
+            ),
             FollowMethod::Riks(riks) => (
                 follow_path_riks(problem, start, factor, riks, &mut watch),
                 None,

@@ -10,6 +10,9 @@
 //!   factorisation and residual evaluation, with their times, in a [`PathStatistics`].
 //! * [`SpareTangent`]: a second tangent and factorisation on the same pattern (the ANM's check
 //!   of a step's end), which [`Linearization::adopt`] makes the current one.
+//! * [`Workspace`]: a path's matrix and spare made before the path, so that the start's Newton
+//!   iterations assemble into the path's own matrix and the first step keeps their last
+//!   factorisation when the tangent at the start is the same ([`same_tangent`]).
 
 use std::time::Instant;
 
@@ -64,10 +67,21 @@ impl<'a, M: EnergyModel> Linearization<'a, M> {
     /// A linearisation of `problem` refactorising `factor`, which must have been analysed for
     /// the problem's tangent pattern; zero counters.
     pub fn new(problem: &'a Problem<M>, factor: &'a mut SparseFactorization) -> Self {
+        let matrix = problem.new_matrix();
+        Self::with_matrix(problem, factor, matrix)
+    }
+
+    /// [`Self::new`] assembling into `matrix`, which must be on the problem's pattern (a
+    /// [`Workspace`]'s).
+    pub fn with_matrix(
+        problem: &'a Problem<M>,
+        factor: &'a mut SparseFactorization,
+        matrix: SparseMatrix,
+    ) -> Self {
         Linearization {
             problem,
             factor,
-            matrix: problem.new_matrix(),
+            matrix,
             statistics: PathStatistics::default(),
         }
     }
@@ -195,12 +209,123 @@ impl<'a, M: EnergyModel> Linearization<'a, M> {
         (result, other, (wall - seconds).max(0.0))
     }
 
+    /// The first factorisation of a path whose factorisation may already hold the current
+    /// matrix's (`held`: the caller's Newton iterations for the start left it there, in a
+    /// [`Workspace`]): the tangent at $`(U, \lambda)`$ is assembled into `spare`'s matrix and
+    /// made the current one (one assembly counted). When it equals the held one to
+    /// [`HELD_TANGENT_TOLERANCE`] ([`same_tangent`]) the factorisation is kept, uncounted, and
+    /// `Ok(true)` returned; otherwise (or without `held`) it is factorised as by
+    /// [`Self::factorize`]. `spare`'s matrix is left with the previous one.
+    ///
+    /// Newton's last correction is so small at a converged start that the tangents at its
+    /// last two iterates agree to $`10^{-13}`$–$`10^{-12}`$ of the largest entry on every
+    /// example scene (`docs/benchmarks.md`, round twelve): the factorisation of either is the
+    /// other's to within its own rounding, and the path's residual checks see no difference.
+    pub fn factorize_unless_held(
+        &mut self,
+        displacement: &[f64],
+        load: f64,
+        held: bool,
+        spare: &mut SpareTangent,
+    ) -> Result<bool, LinearError> {
+        self.assemble(displacement, load, Some(&mut *spare));
+        std::mem::swap(&mut self.matrix, &mut spare.matrix);
+        if held && same_tangent(&spare.matrix, &self.matrix) {
+            return Ok(true);
+        }
+        let (result, seconds) = timed_factorize(self.factor, &self.matrix);
+        self.count_factorization(seconds);
+        result.map(|()| false)
+    }
+
     /// Makes the tangent and factorisation in `spare` the current ones (and the current ones
     /// the spare).
     pub fn adopt(&mut self, spare: &mut SpareTangent) {
         std::mem::swap(&mut self.matrix, &mut spare.matrix);
         std::mem::swap(self.factor, &mut spare.factor);
     }
+}
+
+/// The memory a path's linearisation works in — the tangent's matrix, and the spare tangent and
+/// factorisation of the ANM's end checks — made before the path, so that the start's Newton
+/// iterations assemble into the path's own matrix ([`Self::tangent_mut`]) and the path keeps
+/// their last factorisation for its first step when the tangent at the start is the same
+/// ([`Self::hold`], [`Linearization::factorize_unless_held`]).
+pub struct Workspace {
+    matrix: SparseMatrix,
+    spare: SpareTangent,
+    held: bool,
+}
+
+impl Workspace {
+    /// The buffers for a path of `problem` with `factor` (analysed for its pattern); nothing
+    /// is touched yet.
+    pub fn new<M: EnergyModel>(
+        problem: &Problem<M>,
+        factor: &SparseFactorization,
+    ) -> Result<Self, LinearError> {
+        Ok(Workspace {
+            matrix: problem.new_matrix(),
+            spare: SpareTangent {
+                matrix: problem.new_matrix(),
+                factor: factor.same_analysis()?,
+            },
+            held: false,
+        })
+    }
+
+    /// The path's tangent matrix, to assemble into before the path (e.g. by the start's Newton
+    /// iterations); forgets [`Self::hold`].
+    pub fn tangent_mut(&mut self) -> &mut SparseMatrix {
+        self.held = false;
+        &mut self.matrix
+    }
+
+    /// Says that the factorisation the path will be given holds that of the matrix in
+    /// [`Self::tangent_mut`]: the path's first step then keeps it when the tangent at the start
+    /// is the same ([`Linearization::factorize_unless_held`]).
+    pub fn hold(&mut self) {
+        self.held = true;
+    }
+
+    /// Whether its spare factorisation was made for `factor`'s analysis.
+    pub fn fits(&self, factor: &SparseFactorization) -> bool {
+        self.spare.factor.shares_analysis(factor)
+    }
+
+    /// The tangent's matrix, the spare, and whether the factorisation holds the matrix's.
+    pub fn into_parts(self) -> (SparseMatrix, SpareTangent, bool) {
+        (self.matrix, self.spare, self.held)
+    }
+}
+
+/// Largest entry-wise difference between two tangents, relative to the largest entry of the
+/// first, below which [`Linearization::factorize_unless_held`] keeps a factorisation of one for
+/// the other. A hundred times the differences measured after Newton's last correction on the
+/// example scenes (at most $`8\cdot10^{-13}`$, the long strip), and far below what the path
+/// resolves: a tangent off by $`\delta K`$ changes a step's series by about
+/// $`K^{-1}\delta K\,U_n`$, which the step's residual checks (tolerance $`10^{-6}`$) would
+/// see long before the loads do.
+pub const HELD_TANGENT_TOLERANCE: f64 = 1e-10;
+
+/// Whether `candidate` has `held`'s pattern and its values to [`HELD_TANGENT_TOLERANCE`] of
+/// `held`'s largest entry (a non-finite entry never matches).
+pub fn same_tangent(held: &SparseMatrix, candidate: &SparseMatrix) -> bool {
+    let same_pattern = std::sync::Arc::ptr_eq(&held.pattern, &candidate.pattern)
+        || held.pattern == candidate.pattern;
+    if !same_pattern || held.values.len() != candidate.values.len() {
+        return false;
+    }
+    let scale = held.values.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let bound = HELD_TANGENT_TOLERANCE * scale;
+    scale.is_finite()
+        && scale > 0.0
+        && held
+            .values
+            .iter()
+            .zip(&candidate.values)
+            // `<=` is false for NaN: a non-finite entry never matches.
+            .all(|(a, b)| (a - b).abs() <= bound)
 }
 
 /// Factorises `matrix` into `factor` (uncounted), with the seconds it took.

@@ -163,7 +163,7 @@ impl<M: EnergyModel> Assembler<M> {
             .expect("dof indices come from the dof map"),
         );
         let element_slots = element_dofs
-            .iter()
+            .par_iter()
             .map(|d| pattern.element_slots(d))
             .collect();
         let colours = colour_elements(&mesh);
