@@ -22,6 +22,7 @@ use wrinkle::output::PathPoint;
 use wrinkle::results::RunReport;
 use wrinkle::run::run;
 use wrinkle::scene::Scene;
+use wrinkle::threshold::buckle;
 
 /// `wrinkle run` of the long strip with `settings` (and no plots or VTU files) into a
 /// temporary directory named after `name`, which is removed; the run must not fail.
@@ -152,6 +153,48 @@ fn strip_plate_pade_end_past_the_threshold_is_shortened_not_dropped() {
 }
 
 /// The path of the long strip at 16 × 8 with `solver.method`.
+/// The strip's plate on the coarse uniform 58 × 16 mesh: its threshold (14.82 mm) lies 27 % below
+/// the reference envelope's (20.40 mm), the guess its analysis is shifted about, so that the
+/// tangents at 0.95 and 0.8 of the guess have negative pivots, and the analysis about λ = 0 does
+/// not converge (the strip's load stiffness is far from definite: 2 520 operator applications).
+/// Each shift found above the threshold is halved: at 0.4 of the guess the analysis finds λ_c,
+/// within 0.5 % of the 56 × 16 mesh's (whose analysis at 0.8 of its guess succeeds).
+#[test]
+fn strip_plate_threshold_below_both_shifts_of_its_guess_is_found_by_halving() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes/long_strip.toml");
+    let threshold = |nx: &str, ny: &str| {
+        let mut scene = Scene::load(&path).unwrap();
+        for setting in [
+            "model.name=fvk-plate".to_string(),
+            format!("mesh.nx={nx}"),
+            format!("mesh.ny={ny}"),
+            "mesh.grading_x=1".to_string(),
+            "mesh.grading_y=1".to_string(),
+        ] {
+            scene.apply_override(&setting).unwrap();
+        }
+        scene.validate().unwrap();
+        buckle(&scene, true).unwrap()
+    };
+    let coarse = threshold("58", "16");
+    let neighbour = threshold("56", "16");
+    let (critical, reference) = (coarse.critical_load(), neighbour.critical_load());
+    assert!(
+        coarse.reference_load > 0.0 && coarse.reference_load < 0.6 * critical,
+        "shifted about {} for λ_c = {critical}",
+        coarse.reference_load
+    );
+    assert!(
+        coarse.buckling.residuals[0] <= 1e-8,
+        "{:?}",
+        coarse.buckling.residuals
+    );
+    assert!(
+        ((critical - reference) / reference).abs() < 5e-3,
+        "{critical} against {reference}"
+    );
+}
+
 fn strip_path_16x8(method: &str) -> Vec<PathPoint> {
     let (_, report) = run_strip(
         &format!("16x8-{method}"),
