@@ -566,41 +566,34 @@ impl<M: EnergyModel> PathRecorder<'_, '_, M> {
 /// Equilibrium at $`\lambda = 0`$ under the fixed loads (tension, imperfection), by Newton from
 /// the pre-buckling state plus the imperfection's linear `response` when known (then the
 /// residual left to correct is the imperfection's quadratic part: one iteration fewer).
-/// Newton assembles into the path's `workspace` when given, which then holds its last
-/// tangent, factorised in `factor` ([`Workspace::hold`]: the path's first step keeps that
-/// factorisation when the tangent at the start is the same).
+/// Newton assembles into the path's `workspace` when given ([`Workspace::newton`]: the path's
+/// first step keeps its last factorisation when the tangent at the start is the same).
 fn start_point<M: EnergyModel>(
     problem: &Problem<M>,
     factor: &mut SparseFactorization,
     threshold: &Threshold,
     response: Option<&[f64]>,
-    mut workspace: Option<&mut Workspace>,
+    workspace: Option<&mut Workspace>,
 ) -> Result<PathState, Error> {
-    let mut own = None;
-    let matrix = match workspace.as_deref_mut() {
-        Some(workspace) => workspace.tangent_mut(),
-        None => own.insert(problem.new_matrix()),
-    };
     let mut initial = threshold.buckling.state_at(threshold.reference_load, 0.0);
     if let Some(response) = response {
         for (u, r) in initial.iter_mut().zip(response) {
             *u += r;
         }
     }
-    let solution = newton(
-        problem,
-        initial,
-        0.0,
-        factor,
-        matrix,
-        &NewtonOptions::default(),
-    )
-    .map_err(|e| Error::Solver(format!("equilibrium at zero load: {e}")))?;
-    if solution.iterations > 0
-        && let Some(workspace) = workspace
-    {
-        workspace.hold();
+    let options = NewtonOptions::default();
+    let solution = match workspace {
+        Some(workspace) => workspace.newton(problem, initial, 0.0, factor, &options),
+        None => newton(
+            problem,
+            initial,
+            0.0,
+            factor,
+            &mut problem.new_matrix(),
+            &options,
+        ),
     }
+    .map_err(|e| Error::Solver(format!("equilibrium at zero load: {e}")))?;
     Ok(PathState {
         displacement: solution.solution,
         load: 0.0,

@@ -67,8 +67,8 @@ enum Start {
     Plain,
     /// Newton assembles into the workspace, which holds its last factorisation.
     Held,
-    /// The workspace is told it holds a factorisation that is not the start's: the tangent
-    /// at another point, factorised last.
+    /// The workspace's Newton ran at another load, then the start's Newton outside it: the
+    /// workspace holds a tangent that is not the start's.
     HeldElsewhere,
 }
 
@@ -76,32 +76,36 @@ enum Start {
 fn follow(problem: &Problem<NonlinearSpring>, start: Start) -> (FollowedPath, Vec<PathState>) {
     let mut factor = SparseFactorization::analyze(problem.assembler.pattern()).unwrap();
     let mut workspace = Workspace::new(problem, &factor).unwrap();
-    let mut plain = problem.new_matrix();
-    let matrix = match start {
-        Start::Plain => &mut plain,
-        Start::Held | Start::HeldElsewhere => workspace.tangent_mut(),
-    };
     let guess = vec![0.05; problem.free_count()];
     let newton_options = NewtonOptions::default();
-    let solution = newton(problem, guess, 0.0, &mut factor, matrix, &newton_options).unwrap();
+    if let Start::HeldElsewhere = start {
+        // The workspace's Newton at another load: it holds the tangent there.
+        let solution = workspace.newton(problem, guess.clone(), 0.5, &mut factor, &newton_options);
+        assert!(solution.unwrap().iterations >= 1);
+    }
+    let solution = match start {
+        Start::Plain | Start::HeldElsewhere => {
+            let mut plain = problem.new_matrix();
+            newton(
+                problem,
+                guess,
+                0.0,
+                &mut factor,
+                &mut plain,
+                &newton_options,
+            )
+        }
+        Start::Held => workspace.newton(problem, guess, 0.0, &mut factor, &newton_options),
+    }
+    .unwrap();
     assert!(solution.iterations >= 2, "Newton iterated");
     let state = PathState {
         displacement: solution.solution,
         load: 0.0,
     };
-    if let Start::HeldElsewhere = start {
-        // The tangent at a strained point, assembled and factorised last.
-        let elsewhere = vec![0.3; problem.free_count()];
-        let matrix = workspace.tangent_mut();
-        problem.tangent_into(&elsewhere, 0.0, matrix);
-        factor.factorize(matrix).unwrap();
-    }
     let workspace = match start {
         Start::Plain => None,
-        Start::Held | Start::HeldElsewhere => {
-            workspace.hold();
-            Some(workspace)
-        }
+        Start::Held | Start::HeldElsewhere => Some(workspace),
     };
     let options = FollowOptions {
         method: FollowMethod::Anm(AnmOptions {

@@ -121,32 +121,26 @@ pub fn follow_line<M: EnergyModel>(
     );
     let mut factor = SparseFactorization::analyze(problem.assembler.pattern())
         .map_err(|e| Error::Solver(format!("analysing the tangent: {e}")))?;
-    // Newton assembles into the path's own matrix: the first step keeps its factorisation
-    // when the tangent at the start is the same (`Workspace::hold`).
-    let mut workspace = Workspace::new(&problem, &factor).ok();
-    let mut own = None;
-    let matrix = match workspace.as_mut() {
-        Some(workspace) => workspace.tangent_mut(),
-        None => own.insert(problem.new_matrix()),
-    };
     let options = NewtonOptions {
         tolerance: scene.solver.tolerance,
         max_iterations: 20,
     };
-    let start = newton(
-        &problem,
-        vec![0.0; problem.free_count()],
-        0.0,
-        &mut factor,
-        matrix,
-        &options,
-    )
-    .map_err(|e| Error::Solver(format!("the unloaded state: {e}")))?;
-    if start.iterations > 0
-        && let Some(workspace) = workspace.as_mut()
-    {
-        workspace.hold();
+    // Newton assembles into the path's own matrix: the first step keeps its factorisation
+    // when the tangent at the start is the same (`Workspace::newton`).
+    let mut workspace = Workspace::new(&problem, &factor).ok();
+    let unloaded = vec![0.0; problem.free_count()];
+    let start = match workspace.as_mut() {
+        Some(workspace) => workspace.newton(&problem, unloaded, 0.0, &mut factor, &options),
+        None => newton(
+            &problem,
+            unloaded,
+            0.0,
+            &mut factor,
+            &mut problem.new_matrix(),
+            &options,
+        ),
     }
+    .map_err(|e| Error::Solver(format!("the unloaded state: {e}")))?;
     let started = Instant::now();
     let mut recorder = Recorder {
         problem: &problem,

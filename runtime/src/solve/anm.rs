@@ -786,7 +786,7 @@ struct AnmRun<'scope, 'a: 'scope, M: EnergyModel> {
     /// of the previous step).
     start_factorized: bool,
     /// The factorisation holds that of the current matrix, assembled before the path (the
-    /// start's Newton, [`Workspace::hold`]): the first step keeps it when the tangent at the
+    /// start's Newton, [`Workspace::newton`]): the first step keeps it when the tangent at the
     /// start is the same ([`Linearization::factorize_unless_held`]).
     start_held: bool,
     /// The load of the step end the tape was last started at (beside that end's

@@ -93,7 +93,7 @@ pub fn follow_path<M: EnergyModel>(
 
 /// [`follow_path`] in the [`Workspace`] made for the path, when given: the ANM assembles and
 /// checks its step ends in its buffers, and keeps the factorisation it holds for the first
-/// step when the start's tangent is the one factorised there ([`Workspace::hold`]). Riks does
+/// step when the start's tangent is the one factorised there ([`Workspace::newton`]). Riks does
 /// not use it.
 pub fn follow_path_in_workspace<M: EnergyModel>(
     problem: &Problem<M>,

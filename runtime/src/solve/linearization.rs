@@ -16,6 +16,8 @@
 
 use std::time::Instant;
 
+use super::error::SolveError;
+use super::newton::{NewtonOptions, NewtonSolution, newton};
 use super::path::PathStatistics;
 use crate::linear::factor::{FactorizationKind, LinearError, SparseFactorization};
 use crate::linear::pattern::SparseMatrix;
@@ -248,9 +250,9 @@ impl<'a, M: EnergyModel> Linearization<'a, M> {
 
 /// The memory a path's linearisation works in — the tangent's matrix, and the spare tangent and
 /// factorisation of the ANM's end checks — made before the path, so that the start's Newton
-/// iterations assemble into the path's own matrix ([`Self::tangent_mut`]) and the path keeps
+/// iterations assemble into the path's own matrix ([`Self::newton`]) and the path keeps
 /// their last factorisation for its first step when the tangent at the start is the same
-/// ([`Self::hold`], [`Linearization::factorize_unless_held`]).
+/// ([`Linearization::factorize_unless_held`]).
 pub struct Workspace {
     matrix: SparseMatrix,
     spare: SpareTangent,
@@ -274,18 +276,22 @@ impl Workspace {
         })
     }
 
-    /// The path's tangent matrix, to assemble into before the path (e.g. by the start's Newton
-    /// iterations); forgets [`Self::hold`].
-    pub fn tangent_mut(&mut self) -> &mut SparseMatrix {
+    /// Newton for the path's start ([`newton`](super::newton::newton)), assembling into the
+    /// path's own matrix: when it iterated, `factor` is left holding the factorisation of its
+    /// last tangent, and the path's first step keeps it when the tangent at the start is the
+    /// same ([`Linearization::factorize_unless_held`]).
+    pub fn newton<M: EnergyModel>(
+        &mut self,
+        problem: &Problem<M>,
+        initial: Vec<f64>,
+        load: f64,
+        factor: &mut SparseFactorization,
+        options: &NewtonOptions,
+    ) -> Result<NewtonSolution, SolveError> {
         self.held = false;
-        &mut self.matrix
-    }
-
-    /// Says that the factorisation the path will be given holds that of the matrix in
-    /// [`Self::tangent_mut`]: the path's first step then keeps it when the tangent at the start
-    /// is the same ([`Linearization::factorize_unless_held`]).
-    pub fn hold(&mut self) {
-        self.held = true;
+        let solution = newton(problem, initial, load, factor, &mut self.matrix, options)?;
+        self.held = solution.iterations > 0;
+        Ok(solution)
     }
 
     /// Whether its spare factorisation was made for `factor`'s analysis.
