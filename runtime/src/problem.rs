@@ -107,7 +107,15 @@ pub struct Problem<M: EnergyModel> {
     pub loads: LoadVectors,
     /// $`\|\partial R/\partial\lambda(0, 0)\|`$, computed on first use.
     load_rate_norm: std::sync::OnceLock<f64>,
+    /// Values of matrices handed back ([`Self::recycle_matrix`]), at most
+    /// [`MAX_RECYCLED_MATRICES`], for [`Self::new_matrix`] to reuse.
+    recycled: std::sync::Mutex<Vec<Vec<f64>>>,
 }
+
+/// Most matrices' values a [`Problem`] keeps for reuse ([`Problem::recycle_matrix`]): the two
+/// of a buckling analysis (its tangent and load stiffness), which become the path's tangent
+/// and its spare after the threshold.
+pub const MAX_RECYCLED_MATRICES: usize = 2;
 
 impl<M: EnergyModel> Problem<M> {
     /// Builds dofs, assembler and load vectors, after checking that the mesh's element supplies
@@ -134,6 +142,7 @@ impl<M: EnergyModel> Problem<M> {
             assembler,
             loads,
             load_rate_norm: std::sync::OnceLock::new(),
+            recycled: std::sync::Mutex::new(Vec::new()),
         })
     }
 
@@ -179,9 +188,42 @@ impl<M: EnergyModel> Problem<M> {
         self.assembler.dofs().free_count
     }
 
-    /// A zero matrix on the tangent's pattern.
+    /// A zero matrix on the tangent's pattern: the values of a recycled matrix, zeroed, when
+    /// there is one ([`Self::recycle_matrix`]), else fresh.
     pub fn new_matrix(&self) -> SparseMatrix {
-        SparseMatrix::zeros(self.assembler.pattern().clone())
+        let pattern = self.assembler.pattern().clone();
+        let recycled = self.recycled.lock().ok().and_then(|mut kept| kept.pop());
+        match recycled {
+            Some(mut values) => {
+                values.fill(0.0);
+                SparseMatrix { pattern, values }
+            }
+            None => SparseMatrix::zeros(pattern),
+        }
+    }
+
+    /// Hands `matrix` back for [`Self::new_matrix`] to reuse its values (when on this problem's
+    /// pattern and fewer than [`MAX_RECYCLED_MATRICES`] are kept; else it is dropped).
+    ///
+    /// A fresh matrix's memory is mapped page by page at its first assembly. A buckling
+    /// analysis hands back its two matrices, so that the path after a threshold assembles into
+    /// memory the threshold has mapped already.
+    pub fn recycle_matrix(&self, matrix: SparseMatrix) {
+        if !Arc::ptr_eq(&matrix.pattern, self.assembler.pattern())
+            || matrix.values.len() != matrix.pattern.nnz()
+        {
+            return;
+        }
+        if let Ok(mut kept) = self.recycled.lock()
+            && kept.len() < MAX_RECYCLED_MATRICES
+        {
+            kept.push(matrix.values);
+        }
+    }
+
+    /// How many matrices' values are kept for reuse ([`Self::recycle_matrix`]).
+    pub fn recycled_matrices(&self) -> usize {
+        self.recycled.lock().map_or(0, |kept| kept.len())
     }
 
     /// $`R(U, \lambda)`$, generic over the scalar (series, dual numbers).
@@ -275,10 +317,8 @@ impl<M: EnergyModel> Problem<M> {
             .assembler
             .dofs()
             .expand(&free_dual, Dual64::new(load, load_direction));
-        let values = self.assembler.tangent_values(&global);
-        for (m, v) in matrix.values.iter_mut().zip(values) {
-            *m = v.eps;
-        }
+        self.assembler
+            .assemble_tangent_derivative_into(&global, matrix);
     }
 
     /// Scale for relative residuals at load `load`:

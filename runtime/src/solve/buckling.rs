@@ -107,6 +107,9 @@ pub fn linear_buckling<M: EnergyModel>(
     }
     let solution = smallest_positive_buckling(&a, factor, &b, &options.eigen)
         .map_err(SolveError::linear("linear buckling: eigen-solver"))?;
+    // Their memory is mapped: the next analysis, or the path, assembles into it.
+    problem.recycle_matrix(a);
+    problem.recycle_matrix(b);
     Ok(LinearBuckling {
         critical_loads: solution
             .modes

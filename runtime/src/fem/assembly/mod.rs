@@ -43,6 +43,7 @@ use crate::model::{EnergyModel, JetEntry, QuadratureRule};
 pub use crate::model::{MAX_FIELDS, MAX_JET};
 use crate::scalar::Scalar;
 use colouring::ElementSink;
+use num_dual::Dual64;
 use rayon::prelude::*;
 use std::sync::Arc;
 
@@ -381,17 +382,42 @@ impl<M: EnergyModel> Assembler<M> {
 
     fn tangent_values_on<E: Element, const B: usize, S: Scalar>(&self, global: &[S]) -> Vec<S> {
         let mut out = vec![S::zero(); self.pattern.nnz()];
+        self.add_tangent_values_on::<E, B, S>(global, &mut out);
+        out
+    }
+
+    /// Adds the tangent's values at `global` into `out` (on [`Self::pattern`]).
+    fn add_tangent_values_on<E: Element, const B: usize, S: Scalar>(
+        &self,
+        global: &[S],
+        out: &mut [S],
+    ) {
+        self.add_projected_tangent_values_on::<E, B, S, S>(global, out, |value| value);
+    }
+
+    /// Adds `project` of the tangent's values at `global` into `out` (on [`Self::pattern`]),
+    /// entry by entry in the order [`Self::add_tangent_values_on`] adds them.
+    fn add_projected_tangent_values_on<E: Element, const B: usize, S: Scalar, T: Scalar>(
+        &self,
+        global: &[S],
+        out: &mut [T],
+        project: impl Fn(S) -> T + Sync + Copy,
+    ) {
+        assert_eq!(
+            out.len(),
+            self.pattern.nnz(),
+            "values off the tangent's pattern"
+        );
         let wide = crate::simd::has_avx2();
-        self.accumulate(&mut out, |e, sink| {
+        self.accumulate(out, |e, sink| {
             #[cfg(target_arch = "x86_64")]
             if wide {
                 // SAFETY: the processor has AVX2.
-                unsafe { self.add_element_tangent_avx2::<E, B, S>(e, global, sink) };
+                unsafe { self.add_element_tangent_avx2::<E, B, S, T>(e, global, sink, project) };
                 return;
             }
-            self.add_element_tangent::<E, B, S>(e, global, sink);
+            self.add_element_tangent::<E, B, S, T>(e, global, sink, project);
         });
-        out
     }
 
     /// [`Self::element_internal_forces`], compiled for AVX2 when `wide` ([`crate::simd`]: the
@@ -429,14 +455,15 @@ impl<M: EnergyModel> Assembler<M> {
     /// Adds element `e`'s tangent to `sink`. A holds each pattern entry once (diagonal entries
     /// halved): $`K = A + A^\top`$.
     #[inline(always)]
-    fn add_element_tangent<E: Element, const B: usize, S: Scalar>(
+    fn add_element_tangent<E: Element, const B: usize, S: Scalar, T: Scalar>(
         &self,
         e: usize,
         global: &[S],
-        sink: &mut ElementSink<S>,
+        sink: &mut ElementSink<T>,
+        project: impl Fn(S) -> T,
     ) {
         let element = self.element_tangent::<E, B, S>(e, global);
-        self.for_each_tangent_slot::<E, B, S>(e, &element, |s, value| sink.add(s, value));
+        self.for_each_tangent_slot::<E, B, S>(e, &element, |s, value| sink.add(s, project(value)));
     }
 
     /// [`Self::add_element_tangent`] compiled for AVX2 ([`crate::simd`]: the same bits).
@@ -445,19 +472,42 @@ impl<M: EnergyModel> Assembler<M> {
     /// The processor must have AVX2 ([`crate::simd::has_avx2`]).
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    unsafe fn add_element_tangent_avx2<E: Element, const B: usize, S: Scalar>(
+    unsafe fn add_element_tangent_avx2<E: Element, const B: usize, S: Scalar, T: Scalar>(
         &self,
         e: usize,
         global: &[S],
-        sink: &mut ElementSink<S>,
+        sink: &mut ElementSink<T>,
+        project: impl Fn(S) -> T,
     ) {
-        self.add_element_tangent::<E, B, S>(e, global, sink);
+        self.add_element_tangent::<E, B, S, T>(e, global, sink, project);
     }
 
-    /// Assembles the `f64` tangent into `matrix` (which must be on [`Self::pattern`]).
+    /// Assembles the `f64` tangent into `matrix` (which must be on [`Self::pattern`]), in
+    /// place: the same sums as [`Self::tangent_values`]. (Through a fresh vector and a copy, as
+    /// before, every assembly also mapped a fresh copy of the values page by page: the reference
+    /// envelope's path at 128 × 64, 48 MB of values, spent 0.46–0.51 s in its 9 assemblies
+    /// against 0.32–0.37 s in place.)
     pub fn assemble_tangent_into(&self, global: &[f64], matrix: &mut SparseMatrix) {
-        let values = self.tangent_values(global);
-        matrix.values.copy_from_slice(&values);
+        matrix.values.fill(0.0);
+        with_element!(self.mesh.kind, E => {
+            self.add_tangent_values_on::<E, { E::FUNCTIONS }, f64>(global, &mut matrix.values)
+        })
+    }
+
+    /// Assembles into `matrix` (on [`Self::pattern`]) the dual parts of the tangent at the
+    /// dual-number nodal values `global`: the directional derivative of the tangent along their
+    /// dual parts. The dual parts add on their own, so the values are those of
+    /// [`Self::tangent_values`]' dual parts, without its dual-number matrix (twice the
+    /// tangent's memory, mapped afresh at each call).
+    pub fn assemble_tangent_derivative_into(&self, global: &[Dual64], matrix: &mut SparseMatrix) {
+        matrix.values.fill(0.0);
+        with_element!(self.mesh.kind, E => {
+            self.add_projected_tangent_values_on::<E, { E::FUNCTIONS }, Dual64, f64>(
+                global,
+                &mut matrix.values,
+                |value| value.eps,
+            )
+        })
     }
 
     /// Element means of the work conjugates of jet entries: for each requested entry $`j`$
