@@ -37,7 +37,7 @@ use wrinkle_runtime::solve::follow::{
 };
 use wrinkle_runtime::solve::landing::parameter_on_step;
 use wrinkle_runtime::solve::linearization::Workspace;
-use wrinkle_runtime::solve::newton::{NewtonOptions, newton};
+use wrinkle_runtime::solve::newton::NewtonOptions;
 use wrinkle_runtime::solve::path::{
     OnStep, PathControl, PathEvent, PathResult, PathState, PathStop,
 };
@@ -582,18 +582,8 @@ fn start_point<M: EnergyModel>(
         }
     }
     let options = NewtonOptions::default();
-    let solution = match workspace {
-        Some(workspace) => workspace.newton(problem, initial, 0.0, factor, &options),
-        None => newton(
-            problem,
-            initial,
-            0.0,
-            factor,
-            &mut problem.new_matrix(),
-            &options,
-        ),
-    }
-    .map_err(|e| Error::Solver(format!("equilibrium at zero load: {e}")))?;
+    let solution = Workspace::newton_in(workspace, problem, initial, 0.0, factor, &options)
+        .map_err(|e| Error::Solver(format!("equilibrium at zero load: {e}")))?;
     Ok(PathState {
         displacement: solution.solution,
         load: 0.0,

@@ -27,7 +27,7 @@ use wrinkle_runtime::solve::follow::{
     FollowMethod, FollowOptions, PathObserver, follow_path_in_workspace,
 };
 use wrinkle_runtime::solve::linearization::Workspace;
-use wrinkle_runtime::solve::newton::{NewtonOptions, newton};
+use wrinkle_runtime::solve::newton::NewtonOptions;
 use wrinkle_runtime::solve::path::{PathControl, PathEvent, PathState};
 use wrinkle_runtime::solve::riks::RiksOptions;
 
@@ -129,17 +129,14 @@ pub fn follow_line<M: EnergyModel>(
     // when the tangent at the start is the same (`Workspace::newton`).
     let mut workspace = Workspace::new(&problem, &factor).ok();
     let unloaded = vec![0.0; problem.free_count()];
-    let start = match workspace.as_mut() {
-        Some(workspace) => workspace.newton(&problem, unloaded, 0.0, &mut factor, &options),
-        None => newton(
-            &problem,
-            unloaded,
-            0.0,
-            &mut factor,
-            &mut problem.new_matrix(),
-            &options,
-        ),
-    }
+    let start = Workspace::newton_in(
+        workspace.as_mut(),
+        &problem,
+        unloaded,
+        0.0,
+        &mut factor,
+        &options,
+    )
     .map_err(|e| Error::Solver(format!("the unloaded state: {e}")))?;
     let started = Instant::now();
     let mut recorder = Recorder {

@@ -294,6 +294,29 @@ impl Workspace {
         Ok(solution)
     }
 
+    /// [`Self::newton`] in `workspace` when there is one, else Newton assembling into a matrix
+    /// of its own.
+    pub fn newton_in<M: EnergyModel>(
+        workspace: Option<&mut Self>,
+        problem: &Problem<M>,
+        initial: Vec<f64>,
+        load: f64,
+        factor: &mut SparseFactorization,
+        options: &NewtonOptions,
+    ) -> Result<NewtonSolution, SolveError> {
+        match workspace {
+            Some(workspace) => workspace.newton(problem, initial, load, factor, options),
+            None => newton(
+                problem,
+                initial,
+                load,
+                factor,
+                &mut problem.new_matrix(),
+                options,
+            ),
+        }
+    }
+
     /// Whether its spare factorisation was made for `factor`'s analysis.
     pub fn fits(&self, factor: &SparseFactorization) -> bool {
         self.spare.factor.shares_analysis(factor)

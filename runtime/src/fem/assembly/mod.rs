@@ -382,21 +382,12 @@ impl<M: EnergyModel> Assembler<M> {
 
     fn tangent_values_on<E: Element, const B: usize, S: Scalar>(&self, global: &[S]) -> Vec<S> {
         let mut out = vec![S::zero(); self.pattern.nnz()];
-        self.add_tangent_values_on::<E, B, S>(global, &mut out);
+        self.add_projected_tangent_values_on::<E, B, S, S>(global, &mut out, |value| value);
         out
     }
 
-    /// Adds the tangent's values at `global` into `out` (on [`Self::pattern`]).
-    fn add_tangent_values_on<E: Element, const B: usize, S: Scalar>(
-        &self,
-        global: &[S],
-        out: &mut [S],
-    ) {
-        self.add_projected_tangent_values_on::<E, B, S, S>(global, out, |value| value);
-    }
-
     /// Adds `project` of the tangent's values at `global` into `out` (on [`Self::pattern`]),
-    /// entry by entry in the order [`Self::add_tangent_values_on`] adds them.
+    /// entry by entry in the order of [`Self::tangent_values`]' sums.
     fn add_projected_tangent_values_on<E: Element, const B: usize, S: Scalar, T: Scalar>(
         &self,
         global: &[S],
@@ -488,10 +479,7 @@ impl<M: EnergyModel> Assembler<M> {
     /// envelope's path at 128 × 64, 48 MB of values, spent 0.46–0.51 s in its 9 assemblies
     /// against 0.32–0.37 s in place.)
     pub fn assemble_tangent_into(&self, global: &[f64], matrix: &mut SparseMatrix) {
-        matrix.values.fill(0.0);
-        with_element!(self.mesh.kind, E => {
-            self.add_tangent_values_on::<E, { E::FUNCTIONS }, f64>(global, &mut matrix.values)
-        })
+        self.assemble_projected_tangent_into(global, matrix, |value| value);
     }
 
     /// Assembles into `matrix` (on [`Self::pattern`]) the dual parts of the tangent at the
@@ -500,12 +488,22 @@ impl<M: EnergyModel> Assembler<M> {
     /// [`Self::tangent_values`]' dual parts, without its dual-number matrix (twice the
     /// tangent's memory, mapped afresh at each call).
     pub fn assemble_tangent_derivative_into(&self, global: &[Dual64], matrix: &mut SparseMatrix) {
+        self.assemble_projected_tangent_into(global, matrix, |value| value.eps);
+    }
+
+    /// `project` of the tangent's values at `global`, assembled into `matrix` in place.
+    fn assemble_projected_tangent_into<S: Scalar>(
+        &self,
+        global: &[S],
+        matrix: &mut SparseMatrix,
+        project: impl Fn(S) -> f64 + Sync + Copy,
+    ) {
         matrix.values.fill(0.0);
         with_element!(self.mesh.kind, E => {
-            self.add_projected_tangent_values_on::<E, { E::FUNCTIONS }, Dual64, f64>(
+            self.add_projected_tangent_values_on::<E, { E::FUNCTIONS }, S, f64>(
                 global,
                 &mut matrix.values,
-                |value| value.eps,
+                project,
             )
         })
     }
