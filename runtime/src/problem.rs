@@ -107,6 +107,8 @@ pub struct Problem<M: EnergyModel> {
     pub loads: LoadVectors,
     /// $`\|\partial R/\partial\lambda(0, 0)\|`$, computed on first use.
     load_rate_norm: std::sync::OnceLock<f64>,
+    /// [`Self::load_elements`], computed on first use.
+    load_elements: std::sync::OnceLock<Vec<bool>>,
     /// Values of matrices handed back ([`Self::recycle_matrix`]), at most
     /// [`MAX_RECYCLED_MATRICES`], for [`Self::new_matrix`] to reuse.
     recycled: std::sync::Mutex<Vec<Vec<f64>>>,
@@ -142,6 +144,7 @@ impl<M: EnergyModel> Problem<M> {
             assembler,
             loads,
             load_rate_norm: std::sync::OnceLock::new(),
+            load_elements: std::sync::OnceLock::new(),
             recycled: std::sync::Mutex::new(Vec::new()),
         })
     }
@@ -289,11 +292,39 @@ impl<M: EnergyModel> Problem<M> {
     }
 
     /// $`\partial R/\partial\lambda`$ at fixed free dofs (includes prescribed displacements
-    /// proportional to the load), by one dual-number residual evaluation.
+    /// proportional to the load), by one dual-number residual evaluation over the elements the
+    /// load reaches.
+    ///
+    /// The load enters the internal forces only through the prescribed values
+    /// $`g_0 + \lambda g_1`$: an element without a dof of $`g_1 \ne 0`$ has a jet whose dual
+    /// parts vanish, so its forces' dual parts are zeros, which change no sum. Those elements
+    /// are left out ([`Self::load_elements`]): the same values as the whole element loop, in a
+    /// fraction of its time (none at all under force control, the edges under displacement
+    /// control). This derivative starts every ANM step, every Newton correction's load column
+    /// and every arc-length step.
     pub fn load_derivative(&self, free: &[f64], load: f64) -> Vec<f64> {
+        let dofs = self.assembler.dofs();
         let free_dual: Vec<Dual64> = free.iter().map(|&u| Dual64::from_re(u)).collect();
-        let r = self.residual(&free_dual, Dual64::new(load, 1.0));
+        let load = Dual64::new(load, 1.0);
+        let global = dofs.expand(&free_dual, load);
+        let mut r = self
+            .assembler
+            .internal_forces_where(&global, self.load_elements());
+        for (i, ri) in r.iter_mut().enumerate() {
+            *ri -= load * self.loads.proportional[i] + self.loads.fixed[i];
+        }
         r.iter().map(|v| v.eps).collect()
+    }
+
+    /// The elements with a prescribed dof whose value depends on the load (one flag per
+    /// element; computed on first use): the only ones whose internal forces depend on
+    /// $`\lambda`$ at fixed free dofs ([`Self::load_derivative`]).
+    pub fn load_elements(&self) -> &[bool] {
+        self.load_elements.get_or_init(|| {
+            let dofs = self.assembler.dofs();
+            self.assembler
+                .elements_with_dofs(|g| dofs.is_load_dependent(g))
+        })
     }
 
     /// Directional derivative of the tangent,

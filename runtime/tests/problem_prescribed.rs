@@ -193,3 +193,72 @@ fn anm_path_under_a_prescribed_displacement_matches_newton() {
         );
     }
 }
+
+/// The load derivative $`\partial R/\partial\lambda`$ of the clamped membrane stretched by its
+/// `right` edge ($`u = \lambda`$) and pulled on `top` by a proportional traction, at a deformed
+/// state: over the two elements on `right` only (of 4 × 2) it has the values of the
+/// dual-number residual over every element, entry for entry, and matches the residual's central
+/// difference in $`\lambda`$. Under force control alone no element carries the load.
+#[test]
+fn load_derivative_over_the_loaded_edge_equals_the_whole_element_loop() {
+    use num_dual::Dual64;
+    let conditions = [
+        DirichletCondition::fixed("left", 0),
+        DirichletCondition::fixed("left", 1),
+        DirichletCondition::prescribed("right", 0, 0.0, 1.0),
+        DirichletCondition::prescribed("right", 1, -0.05, 0.0),
+    ];
+    let pull = Loads {
+        tractions: vec![EdgeTraction {
+            edge: "top".into(),
+            fields: [0, 1],
+            traction: [0.5, 2.0],
+            proportional: true,
+        }],
+        ..Loads::default()
+    };
+    let model = || SvkMembrane::new(YOUNG, POISSON, THICKNESS);
+    let problem = Problem::new(model(), plate(), &conditions, &pull).unwrap();
+    let loaded: Vec<usize> = (0..problem.load_elements().len())
+        .filter(|&e| problem.load_elements()[e])
+        .collect();
+    assert_eq!(loaded.len(), 2, "the elements on `right`: {loaded:?}");
+
+    let free: Vec<f64> = (0..problem.free_count())
+        .map(|i| 0.02 * (0.7 * i as f64).sin())
+        .collect();
+    let load = 0.3;
+    let derivative = problem.load_derivative(&free, load);
+    let dual_free: Vec<Dual64> = free.iter().map(|&u| Dual64::from_re(u)).collect();
+    let whole: Vec<f64> = problem
+        .residual(&dual_free, Dual64::new(load, 1.0))
+        .iter()
+        .map(|r| r.eps)
+        .collect();
+    assert_eq!(derivative, whole, "skipped elements changed a value");
+    let largest = whole.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    assert!(largest > 1.0, "a derivative worth testing: {largest}");
+
+    let h = 1e-6;
+    let above = problem.residual(&free, load + h);
+    let below = problem.residual(&free, load - h);
+    for (i, &d) in derivative.iter().enumerate() {
+        let difference = (above[i] - below[i]) / (2.0 * h);
+        assert!(
+            (d - difference).abs() <= 1e-6 * largest,
+            "dof {i}: {d} against the central difference {difference}"
+        );
+    }
+
+    let support = [
+        DirichletCondition::fixed("left", 0),
+        DirichletCondition::fixed("left", 1),
+    ];
+    let forced = Problem::new(model(), plate(), &support, &pull).unwrap();
+    assert!(forced.load_elements().iter().all(|&e| !e));
+    let minus_pull: Vec<f64> = forced.loads.proportional.iter().map(|p| -p).collect();
+    let free: Vec<f64> = (0..forced.free_count())
+        .map(|i| 0.02 * (0.7 * i as f64).sin())
+        .collect();
+    assert_eq!(forced.load_derivative(&free, load), minus_pull);
+}

@@ -360,6 +360,12 @@ impl DofMap {
         self.prescribed_value_per_load.iter().any(|v| *v != 0.0)
     }
 
+    /// Whether global dof `g` is prescribed with a value that depends on the load
+    /// ($`g_1 \ne 0`$ in $`g_0 + \lambda g_1`$).
+    pub fn is_load_dependent(&self, g: usize) -> bool {
+        self.free_index[g].is_none() && self.prescribed_value_per_load[g] != 0.0
+    }
+
     /// Whether global dof `g` is prescribed.
     pub fn is_prescribed(&self, g: usize) -> bool {
         self.free_index[g].is_none()

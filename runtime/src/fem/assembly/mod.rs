@@ -289,22 +289,52 @@ impl<M: EnergyModel> Assembler<M> {
         out: &mut [S],
         work: impl Fn(usize, &mut ElementSink<S>) + Sync,
     ) {
+        self.accumulate_where(out, None, work);
+    }
+
+    /// [`Self::accumulate`] over the elements `e` with `elements[e]` only (all without a
+    /// mask): each entry is summed in the same order, less the elements left out.
+    fn accumulate_where<S: Scalar>(
+        &self,
+        out: &mut [S],
+        elements: Option<&[bool]>,
+        work: impl Fn(usize, &mut ElementSink<S>) + Sync,
+    ) {
         let sink = ElementSink {
             data: out.as_mut_ptr(),
             len: out.len(),
         };
+        let kept = |e: usize| elements.is_none_or(|mask| mask[e]);
         for colour in &self.colours {
             match self.parallelism {
                 Parallelism::Sequential => {
-                    for &e in colour {
+                    for &e in colour.iter().filter(|&&e| kept(e)) {
                         work(e, &mut sink.clone());
                     }
                 }
                 Parallelism::Chunks(_) => {
-                    colour.par_iter().for_each(|&e| work(e, &mut sink.clone()));
+                    colour
+                        .par_iter()
+                        .filter(|&&e| kept(e))
+                        .for_each(|&e| work(e, &mut sink.clone()));
                 }
             }
         }
+    }
+
+    /// Which elements have a node with a global dof for which `pick(g)` holds (by element).
+    pub fn elements_with_dofs(&self, pick: impl Fn(usize) -> bool) -> Vec<bool> {
+        with_element!(self.mesh.kind, E => {
+            let per_node = self.dofs.field_count * E::COMPONENTS;
+            (0..self.mesh.element_count())
+                .map(|e| {
+                    self.mesh
+                        .nodes_of::<E>(e)
+                        .iter()
+                        .any(|&node| (node * per_node..(node + 1) * per_node).any(&pick))
+                })
+                .collect()
+        })
     }
 
     /// `work(element)` for every element, in element order (parallel unless sequential).
@@ -330,14 +360,31 @@ impl<M: EnergyModel> Assembler<M> {
     /// (prescribed entries included in `global`).
     pub fn internal_forces<S: Scalar>(&self, global: &[S]) -> Vec<S> {
         with_element!(self.mesh.kind, E => {
-            self.internal_forces_on::<E, { E::FUNCTIONS }, S>(global)
+            self.internal_forces_on::<E, { E::FUNCTIONS }, S>(global, None)
         })
     }
 
-    fn internal_forces_on<E: Element, const B: usize, S: Scalar>(&self, global: &[S]) -> Vec<S> {
+    /// [`Self::internal_forces`] summed over the elements `e` with `elements[e]` only (in the
+    /// same order: the sums of those elements' contributions).
+    pub fn internal_forces_where<S: Scalar>(&self, global: &[S], elements: &[bool]) -> Vec<S> {
+        assert_eq!(
+            elements.len(),
+            self.mesh.element_count(),
+            "one flag per element"
+        );
+        with_element!(self.mesh.kind, E => {
+            self.internal_forces_on::<E, { E::FUNCTIONS }, S>(global, Some(elements))
+        })
+    }
+
+    fn internal_forces_on<E: Element, const B: usize, S: Scalar>(
+        &self,
+        global: &[S],
+        elements: Option<&[bool]>,
+    ) -> Vec<S> {
         let mut out = vec![S::zero(); self.dofs.free_count];
         let wide = crate::simd::has_avx2();
-        self.accumulate(&mut out, |e, sink| {
+        self.accumulate_where(&mut out, elements, |e, sink| {
             let element = self.element_internal_forces_wide::<E, B, S>(wide, e, global);
             self.for_each_free_dof::<E, B, S>(e, &element, |i, value| sink.add(i, value));
         });
