@@ -78,6 +78,46 @@ impl Instruction {
     fn needs_own_history(self) -> bool {
         matches!(self, Instruction::Divide(..) | Instruction::Reciprocal(_))
     }
+    /// The series registers the instruction reads.
+    fn operands(self) -> Vec<usize> {
+        match self {
+            Instruction::Jet(_) => Vec::new(),
+            Instruction::Add(a, b)
+            | Instruction::Subtract(a, b)
+            | Instruction::Multiply(a, b)
+            | Instruction::Divide(a, b) => vec![a, b],
+            Instruction::AddReal(a, _)
+            | Instruction::SubtractReal(a, _)
+            | Instruction::SubtractFromReal(a, _)
+            | Instruction::Negate(a)
+            | Instruction::Double(a)
+            | Instruction::Scale(a, _)
+            | Instruction::DivideByReal(a, _)
+            | Instruction::Square(a)
+            | Instruction::Reciprocal(a) => vec![a],
+        }
+    }
+
+    /// The instruction with every register operand `r` replaced by `map(r)`.
+    fn with_registers(self, map: impl Fn(usize) -> usize) -> Self {
+        match self {
+            Instruction::Jet(local) => Instruction::Jet(local),
+            Instruction::Add(a, b) => Instruction::Add(map(a), map(b)),
+            Instruction::Subtract(a, b) => Instruction::Subtract(map(a), map(b)),
+            Instruction::Multiply(a, b) => Instruction::Multiply(map(a), map(b)),
+            Instruction::Divide(a, b) => Instruction::Divide(map(a), map(b)),
+            Instruction::AddReal(a, c) => Instruction::AddReal(map(a), c),
+            Instruction::SubtractReal(a, c) => Instruction::SubtractReal(map(a), c),
+            Instruction::SubtractFromReal(a, c) => Instruction::SubtractFromReal(map(a), c),
+            Instruction::Negate(a) => Instruction::Negate(map(a)),
+            Instruction::Double(a) => Instruction::Double(map(a)),
+            Instruction::Scale(a, c) => Instruction::Scale(map(a), c),
+            Instruction::DivideByReal(a, c) => Instruction::DivideByReal(map(a), c),
+            Instruction::Square(a) => Instruction::Square(map(a)),
+            Instruction::Reciprocal(a) => Instruction::Reciprocal(map(a)),
+        }
+    }
+
     /// Whether the operation is nonlinear in its series operands.
     fn is_nonlinear(self) -> bool {
         matches!(
@@ -136,7 +176,7 @@ impl TaylorProgram {
                 }
             })
             .collect();
-        let instructions = builder.instructions;
+        let (instructions, outputs) = factor_shared_operands(builder.instructions, outputs);
         let mut needs_history = vec![false; instructions.len()];
         for (index, instruction) in instructions.iter().enumerate() {
             for operand in instruction.history_operands() {
@@ -224,6 +264,229 @@ impl TaylorProgram {
             })
             .collect()
     }
+}
+
+/// A constant factor of one term of a linear combination ([`factor_shared_operands`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Factor {
+    Scale(NodeId),
+    DivideByReal(NodeId),
+    Negate,
+    Double,
+}
+
+/// One term of a linear combination: an *atom* register (anything but a sum, difference or
+/// constant scaling) and the constant factors applied to it, innermost first.
+type Term = (Vec<Factor>, usize);
+
+/// Largest number of terms an output is expanded into before its factoring is given up.
+const MAX_EXPANDED_TERMS: usize = 64;
+
+/// The tape slots and the recurrences (products, quotients, reciprocals) of `instructions`:
+/// the memory a Taylor sweep streams per point and order, and its work.
+fn tape_cost(instructions: &[Instruction]) -> (usize, usize) {
+    let mut history = vec![false; instructions.len()];
+    for (index, instruction) in instructions.iter().enumerate() {
+        for operand in instruction.history_operands() {
+            history[operand] = true;
+        }
+        if instruction.needs_own_history() {
+            history[index] = true;
+        }
+    }
+    let slots = history.iter().filter(|&&h| h).count();
+    let recurrences = instructions.iter().filter(|i| i.is_nonlinear()).count();
+    (slots, recurrences)
+}
+
+/// `register` as a linear combination of atoms, or `None` past [`MAX_EXPANDED_TERMS`].
+fn linear_terms(instructions: &[Instruction], register: usize) -> Option<Vec<Term>> {
+    // (register, the factors applied to it, outermost first)
+    let mut stack = vec![(register, Vec::new())];
+    let mut terms = Vec::new();
+    while let Some((r, outer)) = stack.pop() {
+        let with = |factor: Factor| {
+            let mut factors: Vec<Factor> = outer.clone();
+            factors.push(factor);
+            factors
+        };
+        match instructions[r] {
+            Instruction::Add(a, b) => {
+                stack.push((b, outer.clone()));
+                stack.push((a, outer));
+            }
+            Instruction::Subtract(a, b) => {
+                stack.push((b, with(Factor::Negate)));
+                stack.push((a, outer));
+            }
+            Instruction::Scale(a, c) => stack.push((a, with(Factor::Scale(c)))),
+            Instruction::DivideByReal(a, c) => stack.push((a, with(Factor::DivideByReal(c)))),
+            Instruction::Negate(a) => stack.push((a, with(Factor::Negate))),
+            Instruction::Double(a) => stack.push((a, with(Factor::Double))),
+            _ => {
+                let mut factors = outer;
+                factors.reverse();
+                terms.push((factors, r));
+                if terms.len() > MAX_EXPANDED_TERMS {
+                    return None;
+                }
+            }
+        }
+    }
+    Some(terms)
+}
+
+/// Appends `term` (its atom with its factors applied); returns its register.
+fn emit_term(instructions: &mut Vec<Instruction>, (factors, atom): &Term) -> usize {
+    let mut register = *atom;
+    for factor in factors {
+        instructions.push(match *factor {
+            Factor::Scale(c) => Instruction::Scale(register, c),
+            Factor::DivideByReal(c) => Instruction::DivideByReal(register, c),
+            Factor::Negate => Instruction::Negate(register),
+            Factor::Double => Instruction::Double(register),
+        });
+        register = instructions.len() - 1;
+    }
+    register
+}
+
+/// Appends the sum of `terms` (at least one), left to right; returns its register.
+fn emit_sum(instructions: &mut Vec<Instruction>, terms: &[Term]) -> usize {
+    let mut sum = emit_term(instructions, &terms[0]);
+    for term in &terms[1..] {
+        let register = emit_term(instructions, term);
+        instructions.push(Instruction::Add(sum, register));
+        sum = instructions.len() - 1;
+    }
+    sum
+}
+
+/// Factors the series operand that products in one residual output share out of them:
+/// $`\sum_i c_i\,(x\,y_i) = x\,ig(\sum_i c_i\,y_iig)`$, the output's products expanded
+/// through its sums and constant scalings. One recurrence replaces several, and the $`y_i`$
+/// need no tape slot of their own unless another recurrence reads them: on the reference
+/// envelope, $`\partial\psi/\partial w = 2Q^2 w\,(c^2 N_x + s^2 N_y + 2cs N_{xy})`$ was three
+/// products of $`w`$ with strain and stress combinations (9 slots, 11 products), and is one
+/// (7 slots, 9 products) — the Taylor sweeps stream the tape, so its slots are their memory
+/// traffic. Kept only when the tape gets smaller (fewer slots, or as many and fewer
+/// recurrences); otherwise the program is returned as it was. The factored sums round
+/// differently from the expanded ones.
+fn factor_shared_operands(
+    instructions: Vec<Instruction>,
+    outputs: Vec<TaylorOutput>,
+) -> (Vec<Instruction>, Vec<TaylorOutput>) {
+    let mut factored = instructions.clone();
+    let mut replaced: HashMap<usize, usize> = HashMap::new();
+    let mut changed = false;
+    for output in &outputs {
+        let TaylorOutput::Register(root) = *output else {
+            continue;
+        };
+        if replaced.contains_key(&root) {
+            continue;
+        }
+        let Some(mut terms) = linear_terms(&instructions, root) else {
+            continue;
+        };
+        let mut factored_here = false;
+        loop {
+            // The operand shared by the most products among the terms (ties: the lowest).
+            let mut uses: HashMap<usize, Vec<usize>> = HashMap::new();
+            for (t, (_, atom)) in terms.iter().enumerate() {
+                if let Instruction::Multiply(a, b) = factored[*atom] {
+                    uses.entry(a).or_default().push(t);
+                    uses.entry(b).or_default().push(t);
+                }
+            }
+            let Some((shared, group)) = uses
+                .into_iter()
+                .filter(|(_, group)| group.len() >= 2)
+                .max_by_key(|(operand, group)| (group.len(), std::cmp::Reverse(*operand)))
+            else {
+                break;
+            };
+            let cofactors: Vec<Term> = group
+                .iter()
+                .map(|&t| {
+                    let (factors, atom) = &terms[t];
+                    let Instruction::Multiply(a, b) = factored[*atom] else {
+                        unreachable!("grouped terms are products");
+                    };
+                    (factors.clone(), if a == shared { b } else { a })
+                })
+                .collect();
+            let cofactor = emit_sum(&mut factored, &cofactors);
+            factored.push(Instruction::Multiply(shared, cofactor));
+            let product = factored.len() - 1;
+            let mut kept: Vec<Term> = terms
+                .iter()
+                .enumerate()
+                .filter(|(t, _)| !group.contains(t))
+                .map(|(_, term)| term.clone())
+                .collect();
+            kept.push((Vec::new(), product));
+            terms = kept;
+            factored_here = true;
+        }
+        if factored_here {
+            let sum = emit_sum(&mut factored, &terms);
+            replaced.insert(root, sum);
+            changed = true;
+        }
+    }
+    if !changed {
+        return (instructions, outputs);
+    }
+    let outputs_factored: Vec<TaylorOutput> = outputs
+        .iter()
+        .map(|output| match *output {
+            TaylorOutput::Register(r) => TaylorOutput::Register(*replaced.get(&r).unwrap_or(&r)),
+            TaylorOutput::Constant => TaylorOutput::Constant,
+        })
+        .collect();
+    let (factored, outputs_factored) = without_dead_registers(&factored, &outputs_factored);
+    if tape_cost(&factored) < tape_cost(&instructions) {
+        (factored, outputs_factored)
+    } else {
+        (instructions, outputs)
+    }
+}
+
+/// The instructions the outputs read, in order and renumbered, with the outputs renumbered.
+fn without_dead_registers(
+    instructions: &[Instruction],
+    outputs: &[TaylorOutput],
+) -> (Vec<Instruction>, Vec<TaylorOutput>) {
+    let mut live = vec![false; instructions.len()];
+    for output in outputs {
+        if let TaylorOutput::Register(r) = *output {
+            live[r] = true;
+        }
+    }
+    for index in (0..instructions.len()).rev() {
+        if live[index] {
+            for operand in instructions[index].operands() {
+                live[operand] = true;
+            }
+        }
+    }
+    let mut number = vec![usize::MAX; instructions.len()];
+    let mut kept = Vec::new();
+    for (index, instruction) in instructions.iter().enumerate() {
+        if live[index] {
+            number[index] = kept.len();
+            kept.push(instruction.with_registers(|r| number[r]));
+        }
+    }
+    let outputs = outputs
+        .iter()
+        .map(|output| match *output {
+            TaylorOutput::Register(r) => TaylorOutput::Register(number[r]),
+            TaylorOutput::Constant => TaylorOutput::Constant,
+        })
+        .collect();
+    (kept, outputs)
 }
 
 struct Builder<'a> {
@@ -685,4 +948,142 @@ fn binary(a: usize, operator: TokenStream, b: usize) -> TokenStream {
 fn real_binary(a: usize, operator: TokenStream, c: TokenStream) -> TokenStream {
     let a = register_name(a);
     quote!(#a #operator #c)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Order-0 values of `instructions` at `jet`, with the constant node `NodeId(n)` worth
+    /// `1.25 + 0.5 n`.
+    fn values(instructions: &[Instruction], jet: &[f64]) -> Vec<f64> {
+        let real = |c: NodeId| 1.25 + 0.5 * c.0 as f64;
+        let mut x: Vec<f64> = Vec::new();
+        for instruction in instructions {
+            let value = match *instruction {
+                Instruction::Jet(local) => jet[local],
+                Instruction::Add(a, b) => x[a] + x[b],
+                Instruction::AddReal(a, c) => x[a] + real(c),
+                Instruction::Subtract(a, b) => x[a] - x[b],
+                Instruction::SubtractReal(a, c) => x[a] - real(c),
+                Instruction::SubtractFromReal(a, c) => real(c) - x[a],
+                Instruction::Negate(a) => -x[a],
+                Instruction::Double(a) => x[a] + x[a],
+                Instruction::Scale(a, c) => x[a] * real(c),
+                Instruction::DivideByReal(a, c) => x[a] / real(c),
+                Instruction::Multiply(a, b) => x[a] * x[b],
+                Instruction::Square(a) => x[a] * x[a],
+                Instruction::Divide(a, b) => x[a] / x[b],
+                Instruction::Reciprocal(a) => 1.0 / x[a],
+            };
+            x.push(value);
+        }
+        x
+    }
+
+    fn output_values(program: (&[Instruction], &[TaylorOutput]), jet: &[f64]) -> Vec<f64> {
+        let x = values(program.0, jet);
+        program
+            .1
+            .iter()
+            .map(|output| match *output {
+                TaylorOutput::Register(r) => x[r],
+                TaylorOutput::Constant => 0.0,
+            })
+            .collect()
+    }
+
+    const JETS: [[f64; 5]; 3] = [
+        [0.3, -1.7, 2.2, 0.9, -0.4],
+        [1.1, 0.25, -0.6, 3.0, 1.9],
+        [-2.0, 0.8, 0.05, -1.3, 0.7],
+    ];
+
+    #[test]
+    fn an_operand_shared_by_products_of_one_output_is_factored_out() {
+        use Instruction::*;
+        // r = 2 (x y) / c + (x z) c' − (w x) + u (x, y, z, w, u = jet entries 0..5).
+        let instructions = vec![
+            Jet(0),                     // 0 x
+            Jet(1),                     // 1 y
+            Jet(2),                     // 2 z
+            Jet(3),                     // 3 w
+            Jet(4),                     // 4 u
+            Multiply(0, 1),             // 5 x y
+            Double(5),                  // 6
+            DivideByReal(6, NodeId(3)), // 7
+            Multiply(0, 2),             // 8 x z
+            Scale(8, NodeId(5)),        // 9
+            Add(7, 9),                  // 10
+            Multiply(3, 0),             // 11 w x
+            Subtract(10, 11),           // 12
+            Add(12, 4),                 // 13
+        ];
+        let outputs = vec![TaylorOutput::Register(13), TaylorOutput::Constant];
+        assert_eq!(tape_cost(&instructions), (4, 3));
+        let (factored, factored_outputs) =
+            factor_shared_operands(instructions.clone(), outputs.clone());
+        assert_eq!(
+            tape_cost(&factored),
+            (2, 1),
+            "x and one cofactor: {factored:?}"
+        );
+        for jet in &JETS {
+            let before = output_values((&instructions, &outputs), jet);
+            let after = output_values((&factored, &factored_outputs), jet);
+            for (b, a) in before.iter().zip(&after) {
+                assert!((a - b).abs() <= 1e-14 * b.abs().max(1.0), "{a} against {b}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_factoring_that_would_grow_the_tape_is_not_kept() {
+        use Instruction::*;
+        // Outputs x y + x z and y z: factoring x needs a slot for y + z, and y and z keep
+        // theirs for y z (3 slots → 4).
+        let instructions = vec![
+            Jet(0),
+            Jet(1),
+            Jet(2),
+            Multiply(0, 1),
+            Multiply(0, 2),
+            Add(3, 4),
+            Multiply(1, 2),
+        ];
+        let outputs = vec![TaylorOutput::Register(5), TaylorOutput::Register(6)];
+        let (kept, kept_outputs) = factor_shared_operands(instructions.clone(), outputs.clone());
+        assert_eq!(kept, instructions);
+        assert_eq!(kept_outputs, outputs);
+    }
+
+    #[test]
+    fn products_shared_pairwise_are_factored_one_operand_at_a_time() {
+        use Instruction::*;
+        // x y + x z + y z + y w: y is in three products, x in two; y first, then nothing is
+        // shared: y (x + z + w) + x z.
+        let instructions = vec![
+            Jet(0),
+            Jet(1),
+            Jet(2),
+            Jet(3),
+            Multiply(0, 1),
+            Multiply(0, 2),
+            Multiply(1, 2),
+            Multiply(1, 3),
+            Add(4, 5),
+            Add(8, 6),
+            Add(9, 7),
+        ];
+        let outputs = vec![TaylorOutput::Register(10)];
+        let (factored, factored_outputs) =
+            factor_shared_operands(instructions.clone(), outputs.clone());
+        assert_eq!(tape_cost(&instructions), (4, 4));
+        assert_eq!(tape_cost(&factored), (4, 2), "{factored:?}");
+        for jet in &JETS {
+            let before = output_values((&instructions, &outputs), jet)[0];
+            let after = output_values((&factored, &factored_outputs), jet)[0];
+            assert!((after - before).abs() <= 1e-14 * before.abs().max(1.0));
+        }
+    }
 }
