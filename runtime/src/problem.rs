@@ -231,8 +231,14 @@ impl<M: EnergyModel> Problem<M> {
 
     /// $`R(U, \lambda)`$, generic over the scalar (series, dual numbers).
     pub fn residual<S: Scalar>(&self, free: &[S], load: S) -> Vec<S> {
+        self.residual_where(free, load, None)
+    }
+
+    /// [`Self::residual`] with the internal forces of the elements `e` with `elements[e]`
+    /// only (all without a mask; [`Assembler::internal_forces_where`]).
+    fn residual_where<S: Scalar>(&self, free: &[S], load: S, elements: Option<&[bool]>) -> Vec<S> {
         let global = self.assembler.dofs().expand(free, load);
-        let mut r = self.assembler.internal_forces(&global);
+        let mut r = self.assembler.internal_forces_where(&global, elements);
         for (i, ri) in r.iter_mut().enumerate() {
             *ri = *ri - (load * self.loads.proportional[i] + self.loads.fixed[i]);
         }
@@ -303,16 +309,12 @@ impl<M: EnergyModel> Problem<M> {
     /// control). This derivative starts every ANM step, every Newton correction's load column
     /// and every arc-length step.
     pub fn load_derivative(&self, free: &[f64], load: f64) -> Vec<f64> {
-        let dofs = self.assembler.dofs();
         let free_dual: Vec<Dual64> = free.iter().map(|&u| Dual64::from_re(u)).collect();
-        let load = Dual64::new(load, 1.0);
-        let global = dofs.expand(&free_dual, load);
-        let mut r = self
-            .assembler
-            .internal_forces_where(&global, self.load_elements());
-        for (i, ri) in r.iter_mut().enumerate() {
-            *ri -= load * self.loads.proportional[i] + self.loads.fixed[i];
-        }
+        let r = self.residual_where(
+            &free_dual,
+            Dual64::new(load, 1.0),
+            Some(self.load_elements()),
+        );
         r.iter().map(|v| v.eps).collect()
     }
 

@@ -129,14 +129,20 @@ fn bar_stretched_by_a_prescribed_end_displacement_equals_the_traction_loaded_bar
     );
 }
 
-#[test]
-fn anm_path_under_a_prescribed_displacement_matches_newton() {
-    let conditions = [
+/// The clamped membrane's supports: $`u = v = 0`$ on `left`, $`u = \lambda`$ and
+/// $`v = -0.05`$ mm on `right`.
+fn clamped_stretched_and_sheared() -> [DirichletCondition; 4] {
+    [
         DirichletCondition::fixed("left", 0),
         DirichletCondition::fixed("left", 1),
         DirichletCondition::prescribed("right", 0, 0.0, 1.0),
         DirichletCondition::prescribed("right", 1, -0.05, 0.0),
-    ];
+    ]
+}
+
+#[test]
+fn anm_path_under_a_prescribed_displacement_matches_newton() {
+    let conditions = clamped_stretched_and_sheared();
     let problem = Problem::new(
         SvkMembrane::new(YOUNG, POISSON, THICKNESS),
         plate(),
@@ -202,12 +208,7 @@ fn anm_path_under_a_prescribed_displacement_matches_newton() {
 #[test]
 fn load_derivative_over_the_loaded_edge_equals_the_whole_element_loop() {
     use num_dual::Dual64;
-    let conditions = [
-        DirichletCondition::fixed("left", 0),
-        DirichletCondition::fixed("left", 1),
-        DirichletCondition::prescribed("right", 0, 0.0, 1.0),
-        DirichletCondition::prescribed("right", 1, -0.05, 0.0),
-    ];
+    let conditions = clamped_stretched_and_sheared();
     let pull = Loads {
         tractions: vec![EdgeTraction {
             edge: "top".into(),

@@ -140,6 +140,16 @@ pub enum TaylorOutput {
     Constant,
 }
 
+impl TaylorOutput {
+    /// The output with its register `r` replaced by `map(r)`.
+    fn renumbered(self, map: impl Fn(usize) -> usize) -> Self {
+        match self {
+            TaylorOutput::Register(r) => TaylorOutput::Register(map(r)),
+            TaylorOutput::Constant => TaylorOutput::Constant,
+        }
+    }
+}
+
 /// The residual of one term as straight-line operations on series registers.
 #[derive(Clone, Debug)]
 pub struct TaylorProgram {
@@ -177,15 +187,7 @@ impl TaylorProgram {
             })
             .collect();
         let (instructions, outputs) = factor_shared_operands(builder.instructions, outputs);
-        let mut needs_history = vec![false; instructions.len()];
-        for (index, instruction) in instructions.iter().enumerate() {
-            for operand in instruction.history_operands() {
-                needs_history[operand] = true;
-            }
-            if instruction.needs_own_history() {
-                needs_history[index] = true;
-            }
-        }
+        let needs_history = history_needed(&instructions);
         let mut slots = 0;
         let slot_of = needs_history
             .iter()
@@ -282,9 +284,8 @@ type Term = (Vec<Factor>, usize);
 /// Largest number of terms an output is expanded into before its factoring is given up.
 const MAX_EXPANDED_TERMS: usize = 64;
 
-/// The tape slots and the recurrences (products, quotients, reciprocals) of `instructions`:
-/// the memory a Taylor sweep streams per point and order, and its work.
-fn tape_cost(instructions: &[Instruction]) -> (usize, usize) {
+/// Which registers of `instructions` a recurrence reads the history of (the tape slots).
+fn history_needed(instructions: &[Instruction]) -> Vec<bool> {
     let mut history = vec![false; instructions.len()];
     for (index, instruction) in instructions.iter().enumerate() {
         for operand in instruction.history_operands() {
@@ -294,7 +295,13 @@ fn tape_cost(instructions: &[Instruction]) -> (usize, usize) {
             history[index] = true;
         }
     }
-    let slots = history.iter().filter(|&&h| h).count();
+    history
+}
+
+/// The tape slots and the recurrences (products, quotients, reciprocals) of `instructions`:
+/// the memory a Taylor sweep streams per point and order, and its work.
+fn tape_cost(instructions: &[Instruction]) -> (usize, usize) {
+    let slots = history_needed(instructions).iter().filter(|&&h| h).count();
     let recurrences = instructions.iter().filter(|i| i.is_nonlinear()).count();
     (slots, recurrences)
 }
@@ -378,7 +385,6 @@ fn factor_shared_operands(
 ) -> (Vec<Instruction>, Vec<TaylorOutput>) {
     let mut factored = instructions.clone();
     let mut replaced: HashMap<usize, usize> = HashMap::new();
-    let mut changed = false;
     for output in &outputs {
         let TaylorOutput::Register(root) = *output else {
             continue;
@@ -432,18 +438,14 @@ fn factor_shared_operands(
         if factored_here {
             let sum = emit_sum(&mut factored, &terms);
             replaced.insert(root, sum);
-            changed = true;
         }
     }
-    if !changed {
+    if replaced.is_empty() {
         return (instructions, outputs);
     }
     let outputs_factored: Vec<TaylorOutput> = outputs
         .iter()
-        .map(|output| match *output {
-            TaylorOutput::Register(r) => TaylorOutput::Register(*replaced.get(&r).unwrap_or(&r)),
-            TaylorOutput::Constant => TaylorOutput::Constant,
-        })
+        .map(|output| output.renumbered(|r| *replaced.get(&r).unwrap_or(&r)))
         .collect();
     let (factored, outputs_factored) = without_dead_registers(&factored, &outputs_factored);
     if tape_cost(&factored) < tape_cost(&instructions) {
@@ -481,10 +483,7 @@ fn without_dead_registers(
     }
     let outputs = outputs
         .iter()
-        .map(|output| match *output {
-            TaylorOutput::Register(r) => TaylorOutput::Register(number[r]),
-            TaylorOutput::Constant => TaylorOutput::Constant,
-        })
+        .map(|output| output.renumbered(|r| number[r]))
         .collect();
     (kept, outputs)
 }

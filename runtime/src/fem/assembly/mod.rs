@@ -359,21 +359,25 @@ impl<M: EnergyModel> Assembler<M> {
     /// Internal forces $`\partial\Pi/\partial U_a`$ over the free dofs, from global nodal values
     /// (prescribed entries included in `global`).
     pub fn internal_forces<S: Scalar>(&self, global: &[S]) -> Vec<S> {
-        with_element!(self.mesh.kind, E => {
-            self.internal_forces_on::<E, { E::FUNCTIONS }, S>(global, None)
-        })
+        self.internal_forces_where(global, None)
     }
 
-    /// [`Self::internal_forces`] summed over the elements `e` with `elements[e]` only (in the
-    /// same order: the sums of those elements' contributions).
-    pub fn internal_forces_where<S: Scalar>(&self, global: &[S], elements: &[bool]) -> Vec<S> {
-        assert_eq!(
-            elements.len(),
-            self.mesh.element_count(),
-            "one flag per element"
-        );
+    /// [`Self::internal_forces`] summed over the elements `e` with `elements[e]` only (every
+    /// element without a mask), in the same order: the sums of those elements' contributions.
+    pub fn internal_forces_where<S: Scalar>(
+        &self,
+        global: &[S],
+        elements: Option<&[bool]>,
+    ) -> Vec<S> {
+        if let Some(mask) = elements {
+            assert_eq!(
+                mask.len(),
+                self.mesh.element_count(),
+                "one flag per element"
+            );
+        }
         with_element!(self.mesh.kind, E => {
-            self.internal_forces_on::<E, { E::FUNCTIONS }, S>(global, Some(elements))
+            self.internal_forces_on::<E, { E::FUNCTIONS }, S>(global, elements)
         })
     }
 
